@@ -1,0 +1,159 @@
+//! The film: pixels in linear RGB and the reconstruction filter that weights each sample by
+//! its distance from the pixel centre.
+
+use crate::math::Color;
+use serde::Deserialize;
+
+/// Reconstruction filter shapes.
+#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub enum FilterKind {
+    /// Equal weight over the support (default radius 0.5: the pixel itself).
+    Box,
+    /// Weight falling linearly to 0 at the radius (default 1).
+    Tent,
+    /// Gaussian with sigma = radius / 3, shifted to reach 0 at the radius (default 1.5).
+    Gaussian,
+    /// Mitchell-Netravali with B = C = 1/3 (default radius 2): sharper, with small negative
+    /// lobes.
+    Mitchell,
+}
+
+/// A separable reconstruction filter. Each pixel's samples are spread over the filter's
+/// support (a square of side `2 * radius` around the pixel centre) and averaged with these
+/// weights; samples are not shared between pixels, so tiles stay independent.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Filter {
+    /// The shape.
+    pub kind: FilterKind,
+    /// Half-width of the support, in pixels.
+    pub radius: f32,
+    /// The 1D weight tabulated at `TABLE` even steps over `[0, radius]` (the exact formulas
+    /// cost an `exp` per sample; the table is exact at its points and linear between).
+    table: [f32; TABLE],
+}
+
+const TABLE: usize = 64;
+
+impl Filter {
+    /// A filter of `kind`, with its default radius unless one is given.
+    pub fn new(kind: FilterKind, radius: Option<f32>) -> Self {
+        let default = match kind {
+            FilterKind::Box => 0.5,
+            FilterKind::Tent => 1.0,
+            FilterKind::Gaussian => 1.5,
+            FilterKind::Mitchell => 2.0,
+        };
+        let radius = radius.unwrap_or(default);
+        let mut table = [0.0; TABLE];
+        for (i, w) in table.iter_mut().enumerate() {
+            *w = exact_weight(kind, radius, radius * i as f32 / (TABLE - 1) as f32);
+        }
+        Filter {
+            kind,
+            radius,
+            table,
+        }
+    }
+
+    /// Weight of a sample `(dx, dy)` pixels from the pixel centre.
+    #[inline]
+    pub fn weight(&self, dx: f32, dy: f32) -> f32 {
+        self.weight_1d(dx) * self.weight_1d(dy)
+    }
+
+    #[inline]
+    fn weight_1d(&self, x: f32) -> f32 {
+        let x = x.abs();
+        if x > self.radius {
+            return 0.0;
+        }
+        let f = x / self.radius * (TABLE - 1) as f32;
+        let i = (f as usize).min(TABLE - 2);
+        let frac = f - i as f32;
+        self.table[i] + (self.table[i + 1] - self.table[i]) * frac
+    }
+}
+
+/// The filter's 1D weight at distance `x` (in `[0, r]`) from the centre.
+fn exact_weight(kind: FilterKind, r: f32, x: f32) -> f32 {
+    match kind {
+        FilterKind::Box => 1.0,
+        FilterKind::Tent => 1.0 - x / r,
+        FilterKind::Gaussian => {
+            let s2 = 2.0 * (r / 3.0) * (r / 3.0);
+            (-x * x / s2).exp() - (-r * r / s2).exp()
+        }
+        FilterKind::Mitchell => {
+            let x = 2.0 * x / r; // Mitchell is defined on [-2, 2].
+            let (b, c) = (1.0 / 3.0, 1.0 / 3.0);
+            if x < 1.0 {
+                ((12.0 - 9.0 * b - 6.0 * c) * x * x * x
+                    + (-18.0 + 12.0 * b + 6.0 * c) * x * x
+                    + (6.0 - 2.0 * b))
+                    / 6.0
+            } else {
+                ((-b - 6.0 * c) * x * x * x
+                    + (6.0 * b + 30.0 * c) * x * x
+                    + (-12.0 * b - 48.0 * c) * x
+                    + (8.0 * b + 24.0 * c))
+                    / 6.0
+            }
+        }
+    }
+}
+
+/// A rendered image: linear RGB, row 0 at the top.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Image {
+    /// Width in pixels.
+    pub width: u32,
+    /// Height in pixels.
+    pub height: u32,
+    /// Pixels, row by row.
+    pub pixels: Vec<Color>,
+}
+
+impl Image {
+    /// A black image.
+    pub fn new(width: u32, height: u32) -> Self {
+        Image {
+            width,
+            height,
+            pixels: vec![Color::ZERO; width as usize * height as usize],
+        }
+    }
+
+    /// The pixel at `(x, y)`.
+    pub fn get(&self, x: u32, y: u32) -> Color {
+        self.pixels[y as usize * self.width as usize + x as usize]
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn filters_peak_at_the_centre_and_vanish_at_the_radius() {
+        for kind in [
+            FilterKind::Box,
+            FilterKind::Tent,
+            FilterKind::Gaussian,
+            FilterKind::Mitchell,
+        ] {
+            let f = Filter::new(kind, None);
+            let centre = f.weight(0.0, 0.0);
+            assert!(centre > 0.0);
+            assert!(f.weight(0.3, 0.0) <= centre, "{kind:?}");
+            assert_eq!(f.weight(f.radius + 0.01, 0.0), 0.0);
+            assert!(f.weight(f.radius, 0.0).abs() < 1e-6 || kind == FilterKind::Box);
+        }
+        // Mitchell's published value at its centre: (6 - 2B) / 6 = 8/9.
+        assert!(
+            (Filter::new(FilterKind::Mitchell, None).weight(0.0, 0.0) - (8.0f32 / 9.0).powi(2))
+                .abs()
+                < 1e-5
+        );
+    }
+}

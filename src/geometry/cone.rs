@@ -1,0 +1,176 @@
+use super::cylinder::{BOTTOM, SIDE, disk_bounds};
+use super::{ShapeHit, Surface, in_range, nearer, solve_quadratic};
+use crate::math::{Aabb, Frame, Ray, Vec2, Vec3A};
+use std::f32::consts::TAU;
+
+/// A finite cone: a disk of radius `radius` at `base`, narrowing to a point at
+/// `base + height * axis`; the base may be capped.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Cone {
+    /// Centre of the base.
+    pub base: Vec3A,
+    /// Frame whose `w` is the unit axis, pointing to the apex.
+    pub frame: Frame,
+    /// Base radius, positive.
+    pub radius: f32,
+    /// Base to apex, positive.
+    pub height: f32,
+    /// Whether the base is closed by a disk.
+    pub capped: bool,
+}
+
+impl Cone {
+    /// A cone; `axis` need not be unit length but must not be zero.
+    pub fn new(base: Vec3A, axis: Vec3A, radius: f32, height: f32, capped: bool) -> Self {
+        Cone {
+            base,
+            frame: Frame::from_axis(axis.normalize()),
+            radius,
+            height,
+            capped,
+        }
+    }
+
+    /// Nearest hit on the side (the nappe between base and apex only) or the base cap.
+    #[inline]
+    pub fn intersect(&self, ray: &Ray, t_max: f32) -> Option<ShapeHit> {
+        let o = self.frame.to_local(ray.origin - self.base);
+        let d = self.frame.to_local(ray.dir);
+        let k = self.radius / self.height;
+        let k2 = k * k;
+        // x^2 + y^2 = k^2 (h - z)^2
+        let s = self.height - o.z;
+        let a = d.x * d.x + d.y * d.y - k2 * d.z * d.z;
+        let half_b = o.x * d.x + o.y * d.y + k2 * s * d.z;
+        let c = o.x * o.x + o.y * o.y - k2 * s * s;
+        let on_nappe = |t: f32| {
+            let z = o.z + t * d.z;
+            (0.0..=self.height).contains(&z)
+        };
+        let mut best = None;
+        let roots = if a.abs() < 1e-12 * (d.length_squared() * (1.0 + k2)) {
+            // Parallel to a generating line: one root.
+            (half_b != 0.0).then(|| {
+                let t = -c / (2.0 * half_b);
+                (t, t)
+            })
+        } else {
+            solve_quadratic(a, half_b, c)
+        };
+        if let Some((t0, t1)) = roots {
+            for t in [t0, t1] {
+                if on_nappe(t)
+                    && let Some(h) = in_range(t, t_max, SIDE)
+                {
+                    best = Some(h);
+                    break;
+                }
+            }
+        }
+        if self.capped && d.z != 0.0 {
+            let t = -o.z / d.z;
+            let (x, y) = (o.x + t * d.x, o.y + t * d.y);
+            if x * x + y * y <= self.radius * self.radius {
+                best = nearer(best, in_range(t, best.map_or(t_max, |h| h.t), BOTTOM));
+            }
+        }
+        best
+    }
+
+    /// Normal and uv (as the cylinder's: angle around the axis, `v` from 0 at the apex to 1
+    /// at the base; the cap planar).
+    pub fn surface(&self, p: Vec3A, part: u8, want_uv: bool) -> Surface {
+        let l = self.frame.to_local(p - self.base);
+        let k = self.radius / self.height;
+        let (local_normal, uv) = if part == SIDE {
+            let rho = (l.x * l.x + l.y * l.y).sqrt();
+            let n = if rho > 0.0 {
+                Vec3A::new(l.x / rho, l.y / rho, k).normalize()
+            } else {
+                Vec3A::Z
+            };
+            let uv = if want_uv {
+                Vec2::new(0.5 + l.y.atan2(l.x) / TAU, 1.0 - l.z / self.height)
+            } else {
+                Vec2::ZERO
+            };
+            (n, uv)
+        } else {
+            (
+                -Vec3A::Z,
+                Vec2::new(
+                    0.5 + l.x / (2.0 * self.radius),
+                    0.5 - l.y / (2.0 * self.radius),
+                ),
+            )
+        };
+        Surface {
+            point: p,
+            normal: self.frame.to_world(local_normal),
+            uv,
+        }
+    }
+
+    /// True when `p` is strictly inside the solid cone.
+    pub fn contains(&self, p: Vec3A) -> bool {
+        let l = self.frame.to_local(p - self.base);
+        let r = self.radius * (1.0 - l.z / self.height);
+        l.z > 0.0 && l.z < self.height && l.x * l.x + l.y * l.y < r * r
+    }
+
+    /// Bounds (base disk and apex).
+    pub fn bounds(&self) -> Aabb {
+        let mut b = disk_bounds(self.base, self.frame.w, self.radius);
+        b.grow(self.base + self.frame.w * self.height);
+        b
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::Shape;
+    use super::super::test_util::*;
+    use super::*;
+
+    fn cone(capped: bool) -> Shape {
+        // Base radius 1 at y = 0, apex at y = 2.
+        Shape::Cone(Cone::new(Vec3A::ZERO, Vec3A::Y, 1.0, 2.0, capped))
+    }
+
+    #[test]
+    fn side_hit_and_slanted_normal() {
+        // At height 1 the radius is 0.5.
+        let (t, s) = hit(&cone(true), [0.0, 1.0, 5.0], [0.0, 0.0, -1.0]).unwrap();
+        assert!((t - 4.5).abs() < 1e-5, "{t}");
+        // Normal leans up by atan(r / h): (0, 1, 2) normalised.
+        assert_vec_close(s.normal, Vec3A::new(0.0, 1.0, 2.0).normalize(), 1e-5);
+    }
+
+    #[test]
+    fn the_other_nappe_is_not_part_of_the_cone() {
+        // Above the apex the double cone would continue; this ray passes there and misses.
+        assert!(hit(&cone(true), [0.0, 3.0, 5.0], [0.0, 0.0, -1.0]).is_none());
+        // Below the base, likewise.
+        assert!(hit(&cone(false), [0.0, -1.0, 5.0], [0.0, 0.0, -1.0]).is_none());
+    }
+
+    #[test]
+    fn cap_from_below_and_inside_out() {
+        let (t, s) = hit(&cone(true), [0.2, -3.0, 0.0], [0.0, 1.0, 0.0]).unwrap();
+        assert!((t - 3.0).abs() < 1e-5);
+        assert_vec_close(s.normal, -Vec3A::Y, 1e-6);
+        let (t, _) = hit(&cone(true), [0.0, 0.5, 0.0], [1.0, 0.0, 0.0]).unwrap();
+        assert!((t - 0.75).abs() < 1e-5);
+        // Open: from below, the ray goes in through the base and hits the inside.
+        let (t, _) = hit(&cone(false), [0.2, -3.0, 0.0], [0.0, 1.0, 0.0]).unwrap();
+        assert!((t - 4.6).abs() < 1e-4, "{t}");
+    }
+
+    #[test]
+    fn ray_parallel_to_a_generating_line() {
+        // Direction (0.5, -1, 0) up to scale is parallel to the slant from apex to (1, 0, 0).
+        let r = hit(&cone(true), [-0.5, 3.0, 0.0], [0.5, -1.0, 0.0]);
+        let (t, s) = r.unwrap();
+        assert!(t.is_finite() && s.normal.is_finite());
+    }
+}

@@ -1,0 +1,251 @@
+//! Shapes, each in its own object space: one file per shape, dispatched by `match` over the
+//! closed set [`Shape`]. Every shape returns the nearest hit in `(0, t_max)`, so a ray that
+//! starts inside a solid finds its far side, and accepts rays whose direction is not unit
+//! length (rays carried in by a transform).
+
+mod cone;
+mod cuboid;
+mod cylinder;
+mod disk;
+mod plane;
+mod rect;
+mod sphere;
+mod triangle;
+
+pub use cone::Cone;
+pub use cuboid::Cuboid;
+pub use cylinder::Cylinder;
+pub use disk::Disk;
+pub use plane::Plane;
+pub use rect::Rect;
+pub use sphere::Sphere;
+pub use triangle::Triangle;
+
+use crate::math::{Aabb, Ray, Vec2, Vec3A};
+
+/// The nearest intersection found by a shape: the ray parameter and which part of the
+/// shape was hit (side or cap, box face), so the surface details can be worked out later,
+/// once, for the closest hit only.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ShapeHit {
+    /// Ray parameter of the hit.
+    pub t: f32,
+    /// Shape-specific part index (0 for shapes with one part).
+    pub part: u8,
+}
+
+/// Surface details at a hit point, in object space.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Surface {
+    /// The hit point, projected back onto the surface to remove rounding error.
+    pub point: Vec3A,
+    /// Unit outward normal (for open surfaces, the side the shape defines as front).
+    pub normal: Vec3A,
+    /// The shape's own texture coordinates (see docs/scene-format.md for each shape).
+    pub uv: Vec2,
+}
+
+/// Every kind of shape snell can intersect.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Shape {
+    /// A sphere.
+    Sphere(Sphere),
+    /// An infinite plane.
+    Plane(Plane),
+    /// A parallelogram (rectangle when its edges are perpendicular).
+    Rect(Rect),
+    /// An axis-aligned box in object space.
+    Cuboid(Cuboid),
+    /// A finite cylinder, capped or open.
+    Cylinder(Cylinder),
+    /// A finite cone, capped or open at its base.
+    Cone(Cone),
+    /// A flat disk.
+    Disk(Disk),
+    /// A single triangle.
+    Triangle(Triangle),
+}
+
+impl Shape {
+    /// Nearest hit with `0 < t < t_max`.
+    #[inline]
+    pub fn intersect(&self, ray: &Ray, t_max: f32) -> Option<ShapeHit> {
+        match self {
+            Shape::Sphere(s) => s.intersect(ray, t_max),
+            Shape::Plane(s) => s.intersect(ray, t_max),
+            Shape::Rect(s) => s.intersect(ray, t_max),
+            Shape::Cuboid(s) => s.intersect(ray, t_max),
+            Shape::Cylinder(s) => s.intersect(ray, t_max),
+            Shape::Cone(s) => s.intersect(ray, t_max),
+            Shape::Disk(s) => s.intersect(ray, t_max),
+            Shape::Triangle(s) => s.intersect(ray, t_max),
+        }
+    }
+
+    /// Surface details for a hit at object-space point `p` on `part`. The uv costs
+    /// trigonometry on round shapes, so it is only worked out when `want_uv` is set (it is
+    /// zero otherwise).
+    pub fn surface(&self, p: Vec3A, part: u8, want_uv: bool) -> Surface {
+        match self {
+            Shape::Sphere(s) => s.surface(p, want_uv),
+            Shape::Plane(s) => s.surface(p),
+            Shape::Rect(s) => s.surface(p),
+            Shape::Cuboid(s) => s.surface(p, part),
+            Shape::Cylinder(s) => s.surface(p, part, want_uv),
+            Shape::Cone(s) => s.surface(p, part, want_uv),
+            Shape::Disk(s) => s.surface(p),
+            Shape::Triangle(s) => s.surface(p),
+        }
+    }
+
+    /// Object-space bounds; `None` for unbounded shapes (planes).
+    pub fn bounds(&self) -> Option<Aabb> {
+        match self {
+            Shape::Sphere(s) => Some(s.bounds()),
+            Shape::Plane(_) => None,
+            Shape::Rect(s) => Some(s.bounds()),
+            Shape::Cuboid(s) => Some(s.bounds()),
+            Shape::Cylinder(s) => Some(s.bounds()),
+            Shape::Cone(s) => Some(s.bounds()),
+            Shape::Disk(s) => Some(s.bounds()),
+            Shape::Triangle(s) => Some(s.bounds()),
+        }
+    }
+
+    /// True when the object-space point lies strictly inside a closed solid. Open and flat
+    /// shapes contain nothing.
+    pub fn contains(&self, p: Vec3A) -> bool {
+        match self {
+            Shape::Sphere(s) => (p - s.center).length_squared() < s.radius * s.radius,
+            Shape::Cuboid(s) => p.cmpgt(s.min).all() && p.cmplt(s.max).all(),
+            Shape::Cylinder(s) => s.contains(p),
+            Shape::Cone(s) => s.contains(p),
+            _ => false,
+        }
+    }
+
+    /// Short lower-case name of the shape, as written in scene files.
+    pub fn kind(&self) -> &'static str {
+        match self {
+            Shape::Sphere(_) => "sphere",
+            Shape::Plane(_) => "plane",
+            Shape::Rect(_) => "rectangle",
+            Shape::Cuboid(_) => "box",
+            Shape::Cylinder(_) => "cylinder",
+            Shape::Cone(_) => "cone",
+            Shape::Disk(_) => "disk",
+            Shape::Triangle(_) => "triangle",
+        }
+    }
+}
+
+/// Equirectangular coordinates of a unit direction: longitude 0 faces +z, east (+x) is to the
+/// right, `u = 0.5 + longitude / 2 pi`, `v = 0.5 - latitude / pi` (v = 0 is the north pole,
+/// the image's top row).
+pub fn equirectangular_uv(n: Vec3A) -> Vec2 {
+    let longitude = n.x.atan2(n.z);
+    let latitude = n.y.clamp(-1.0, 1.0).asin();
+    Vec2::new(
+        0.5 + longitude / std::f32::consts::TAU,
+        0.5 - latitude / std::f32::consts::PI,
+    )
+}
+
+/// Roots of `a t^2 + 2 half_b t + c = 0` in ascending order, computed without the
+/// cancellation of the textbook formula. `None` when there is no real root or `a` is zero.
+#[inline]
+pub(crate) fn solve_quadratic(a: f32, half_b: f32, c: f32) -> Option<(f32, f32)> {
+    if a == 0.0 {
+        return None;
+    }
+    let disc = half_b * half_b - a * c;
+    if disc < 0.0 || disc.is_nan() {
+        return None;
+    }
+    let q = -(half_b + disc.sqrt().copysign(half_b));
+    if q == 0.0 {
+        // half_b and c are zero: a double root at 0.
+        return Some((0.0, 0.0));
+    }
+    let (t0, t1) = (c / q, q / a);
+    Some(if t0 <= t1 { (t0, t1) } else { (t1, t0) })
+}
+
+/// Picks the nearer of two candidate hits.
+#[inline]
+pub(crate) fn nearer(a: Option<ShapeHit>, b: Option<ShapeHit>) -> Option<ShapeHit> {
+    match (a, b) {
+        (Some(x), Some(y)) => Some(if y.t < x.t { y } else { x }),
+        (x, None) => x,
+        (None, y) => y,
+    }
+}
+
+/// `t` as a hit on `part` when it lies in `(0, t_max)`.
+#[inline]
+pub(crate) fn in_range(t: f32, t_max: f32, part: u8) -> Option<ShapeHit> {
+    (t > 0.0 && t < t_max).then_some(ShapeHit { t, part })
+}
+
+#[cfg(test)]
+pub(crate) mod test_util {
+    use super::*;
+
+    /// Asserts `a` and `b` are within `tol` of each other, component-wise.
+    pub fn assert_vec_close(a: Vec3A, b: Vec3A, tol: f32) {
+        assert!((a - b).abs().max_element() <= tol, "{a} != {b}");
+    }
+
+    /// Hits `shape` with `ray` and returns (t, surface at the hit).
+    pub fn hit(shape: &Shape, origin: [f32; 3], dir: [f32; 3]) -> Option<(f32, Surface)> {
+        let ray = Ray::new(Vec3A::from_array(origin), Vec3A::from_array(dir));
+        shape.intersect(&ray, f32::INFINITY).map(|h| {
+            assert!(h.t.is_finite() && h.t > 0.0);
+            (h.t, shape.surface(ray.at(h.t), h.part, true))
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn equirectangular_landmarks() {
+        // The point facing +z is longitude 0: the centre of the image.
+        let uv = equirectangular_uv(Vec3A::Z);
+        assert!((uv - Vec2::new(0.5, 0.5)).length() < 1e-6);
+        // The north pole is the top row.
+        assert!(equirectangular_uv(Vec3A::Y).y.abs() < 1e-6);
+        assert!((equirectangular_uv(-Vec3A::Y).y - 1.0).abs() < 1e-6);
+        // East (+x, to the camera's right) is longitude +90: three quarters across.
+        assert!((equirectangular_uv(Vec3A::X).x - 0.75).abs() < 1e-6);
+        assert!((equirectangular_uv(-Vec3A::X).x - 0.25).abs() < 1e-6);
+        // The seam (u = 0 and 1) is at the back, -z.
+        let back = equirectangular_uv(Vec3A::new(1e-6, 0.0, -1.0)).x;
+        assert!(!(0.001..=0.999).contains(&back));
+        // 45 degrees north: v = 0.25.
+        let n = Vec3A::new(0.0, 1.0, 1.0).normalize();
+        assert!((equirectangular_uv(n).y - 0.25).abs() < 1e-6);
+    }
+
+    #[test]
+    fn report_formula_would_repeat_the_front_at_the_back() {
+        // The report's u = 0.5 + asin(n.x) / pi gives the same u for a point and its mirror
+        // through the x-y plane; the equirectangular mapping tells them apart.
+        let front = Vec3A::new(0.5, 0.0, 0.866);
+        let back = Vec3A::new(0.5, 0.0, -0.866);
+        let report = |n: Vec3A| 0.5 + n.x.asin() / std::f32::consts::PI;
+        assert_eq!(report(front), report(back));
+        assert!((equirectangular_uv(front).x - equirectangular_uv(back).x).abs() > 0.3);
+    }
+
+    #[test]
+    fn quadratic_is_stable() {
+        let (t0, t1) = solve_quadratic(1.0, -1e4, 1.0).unwrap(); // t^2 - 2e4 t + 1
+        assert!((t0 - 5e-5).abs() / 5e-5 < 1e-4, "{t0}");
+        assert!((t1 - 2e4).abs() / 2e4 < 1e-6);
+        assert!(solve_quadratic(1.0, 0.0, 1.0).is_none());
+        assert!(solve_quadratic(0.0, 1.0, 1.0).is_none());
+    }
+}

@@ -1,0 +1,170 @@
+//! Whitted-style recursive ray tracing, the seed report's model made correct: Phong direct
+//! light with shadow rays (lighter, tinted shadows behind transparent objects), mirror
+//! reflection, and refraction by Snell's law with exact Fresnel weights and total internal
+//! reflection, through solids of any shape, with Beer-Lambert absorption inside them.
+
+use super::Integrator;
+use crate::math::{Color, Ray, Vec3A, fresnel_dielectric, offset_ray_origin, reflect, refract};
+use crate::scene::{Hit, Scene};
+
+/// The Whitted integrator.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Whitted;
+
+/// Longest run of transparent surfaces a shadow ray passes through before giving up.
+const MAX_SHADOW_CROSSINGS: usize = 64;
+
+impl Integrator for Whitted {
+    fn radiance(&self, scene: &Scene, ray: &Ray) -> Color {
+        self.trace(scene, ray, 1, None)
+    }
+}
+
+impl Whitted {
+    /// Colour along `ray`, which is the `depth`-th segment of its path (camera rays are 1).
+    /// `medium` is the absorption coefficient of the solid the ray travels inside, `None`
+    /// in open air (where fog applies instead).
+    pub fn trace(&self, scene: &Scene, ray: &Ray, depth: u32, medium: Option<Color>) -> Color {
+        let Some(hit) = scene.closest_hit(ray, f32::INFINITY) else {
+            return match (medium, scene.fog) {
+                (Some(sigma), _) if sigma != Color::ZERO => Color::ZERO,
+                (None, Some(fog)) => fog.apply(scene.background, f32::INFINITY),
+                _ => scene.background,
+            };
+        };
+        let c = self.shade(scene, ray, &hit, depth, medium);
+        match (medium, scene.fog) {
+            (Some(sigma), _) => c * beer_lambert(sigma, hit.t),
+            (None, Some(fog)) => fog.apply(c, hit.t),
+            (None, None) => c,
+        }
+    }
+
+    fn shade(
+        &self,
+        scene: &Scene,
+        ray: &Ray,
+        hit: &Hit,
+        depth: u32,
+        medium: Option<Color>,
+    ) -> Color {
+        let m = scene.material_of(hit.object);
+        let d = ray.dir;
+        // Entering or leaving is told by the normal: the outward normal faces the ray when
+        // the ray comes from outside.
+        let entering = d.dot(hit.normal) < 0.0;
+        let n = if entering { hit.normal } else { -hit.normal };
+        let base = scene.textures[m.texture].eval(&hit.tex);
+        let above = offset_ray_origin(hit.point, n);
+
+        let mut lit = scene.ambient * base * m.ambient;
+        let mut highlight = Color::ZERO;
+        let view = -d;
+        for light in &scene.lights {
+            let Some(ls) = light.sample(above) else {
+                continue;
+            };
+            let cos = n.dot(ls.to_light);
+            if cos <= 0.0 {
+                continue;
+            }
+            let visible = self.shadow(scene, above, ls.to_light, ls.distance);
+            if visible == Color::ZERO {
+                continue;
+            }
+            let li = ls.radiance * visible;
+            lit += li * base * (m.diffuse * cos);
+            if m.specular != Color::ZERO {
+                let r = reflect(-ls.to_light, n);
+                highlight += li * m.specular * r.dot(view).max(0.0).powf(m.shininess);
+            }
+        }
+
+        let t = m.transparency;
+        let mut out = lit * (1.0 - t) + highlight;
+        if depth >= scene.settings.max_depth {
+            return out;
+        }
+        let mut reflect_weight = (1.0 - t) * m.reflectivity;
+        if t > 0.0 {
+            let eta = if entering { 1.0 / m.ior } else { m.ior };
+            let cos_i = view.dot(n);
+            let fresnel = fresnel_dielectric(cos_i, eta);
+            reflect_weight += t * fresnel;
+            if fresnel < 1.0
+                && let Some(dir) = refract(d, n, eta)
+            {
+                let below = offset_ray_origin(hit.point, -n);
+                let (inside, filter) = if entering {
+                    let sigma = (m.absorption != Color::ZERO).then_some(m.absorption);
+                    (sigma, base)
+                } else {
+                    (None, Color::ONE)
+                };
+                let transmitted = self.trace(scene, &Ray::new(below, dir), depth + 1, inside);
+                out += transmitted * filter * (t * (1.0 - fresnel));
+            }
+        }
+        if reflect_weight > 0.0 {
+            let r = Ray::new(above, reflect(d, n).normalize());
+            out += self.trace(scene, &r, depth + 1, medium) * reflect_weight;
+        }
+        out
+    }
+
+    /// Fraction of light that reaches `origin` from `distance` away along `dir`: 0 behind an
+    /// opaque object; behind transparent ones, the product over the surfaces crossed of
+    /// `transparency * (1 - Fresnel)`, the surface colour where the ray enters a solid, and
+    /// Beer-Lambert absorption over the length inside it.
+    pub fn shadow(&self, scene: &Scene, origin: Vec3A, dir: Vec3A, distance: f32) -> Color {
+        let ray = Ray::new(origin, dir);
+        if scene.opaque_blocked(&ray, distance) {
+            return Color::ZERO;
+        }
+        if !scene.has_transparent() {
+            return Color::ONE;
+        }
+        let mut visible = Color::ONE;
+        let mut ray = ray;
+        let mut remaining = distance;
+        let mut travelled = 0.0;
+        let mut entered_at = 0.0;
+        for _ in 0..MAX_SHADOW_CROSSINGS {
+            let Some(h) = scene.closest_transparent_hit(&ray, remaining) else {
+                return visible;
+            };
+            let m = scene.material_of(h.object);
+            travelled += h.t;
+            let entering = dir.dot(h.normal) < 0.0;
+            let n = if entering { h.normal } else { -h.normal };
+            let eta = if entering { 1.0 / m.ior } else { m.ior };
+            let mut f = Color::splat(m.transparency * (1.0 - fresnel_dielectric(-dir.dot(n), eta)));
+            if entering {
+                f *= scene.textures[m.texture].eval(&h.tex);
+                entered_at = travelled;
+            } else {
+                f *= beer_lambert(m.absorption, travelled - entered_at);
+            }
+            visible *= f;
+            if visible.max_element() < 1e-4 {
+                return Color::ZERO;
+            }
+            ray = Ray::new(offset_ray_origin(h.point, -n), dir);
+            remaining -= h.t;
+        }
+        Color::ZERO
+    }
+}
+
+/// Transmittance `exp(-sigma * distance)` per channel.
+#[inline]
+fn beer_lambert(sigma: Color, distance: f32) -> Color {
+    if sigma == Color::ZERO {
+        return Color::ONE;
+    }
+    Color::new(
+        (-sigma.x * distance).exp(),
+        (-sigma.y * distance).exp(),
+        (-sigma.z * distance).exp(),
+    )
+}

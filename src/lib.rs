@@ -1,0 +1,31 @@
+//! snell: a ray tracer for learning, teaching and making images from scene files.
+//!
+//! The data flows one way: a scene file is parsed and checked ([`scene::load`]) into an
+//! immutable [`Scene`], rendered over all cores ([`render::render`]) by an integrator
+//! ([`integrator::Whitted`]) into an [`film::Image`], and written atomically
+//! ([`output::write_image`]).
+//!
+//! ```no_run
+//! let scene = snell::scene::load(std::path::Path::new("scenes/seed.toml"))?;
+//! let image = snell::render::render(&scene, &snell::integrator::Whitted, None, &|_| {})?;
+//! snell::output::write_image(&image, std::path::Path::new("seed.png"))?;
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+
+#![forbid(unsafe_code)]
+#![deny(missing_docs)]
+
+pub mod accel;
+pub mod camera;
+pub mod film;
+pub mod geometry;
+pub mod integrator;
+pub mod light;
+pub mod material;
+pub mod math;
+pub mod output;
+pub mod render;
+pub mod scene;
+pub mod texture;
+
+pub use scene::Scene;

@@ -1,0 +1,138 @@
+//! Small math vocabulary shared by every part of the renderer: rays, boxes, frames,
+//! transforms, robust ray offsets and a deterministic random number generator.
+
+mod aabb;
+mod frame;
+mod offset;
+mod rng;
+mod transform;
+
+pub use aabb::Aabb;
+pub use frame::Frame;
+pub use glam::{Vec2, Vec3, Vec3A};
+pub use offset::offset_ray_origin;
+pub use rng::{Rng, hash_seed};
+pub use transform::Transform;
+
+/// Linear RGB colour (not sRGB encoded), one `f32` per channel.
+pub type Color = Vec3A;
+
+/// A half-line `origin + t * dir`. World-space rays carry a unit `dir`; rays carried into an
+/// object's space by a transform may not, and every intersection routine accepts that.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Ray {
+    /// Where the ray starts.
+    pub origin: Vec3A,
+    /// Which way it goes (unit length in world space).
+    pub dir: Vec3A,
+}
+
+impl Ray {
+    /// A ray from `origin` along `dir`.
+    pub fn new(origin: Vec3A, dir: Vec3A) -> Self {
+        Ray { origin, dir }
+    }
+
+    /// The point at parameter `t`.
+    pub fn at(&self, t: f32) -> Vec3A {
+        self.origin + self.dir * t
+    }
+}
+
+/// Mirror reflection of direction `d` about the normal `n` (unit).
+pub fn reflect(d: Vec3A, n: Vec3A) -> Vec3A {
+    d - 2.0 * d.dot(n) * n
+}
+
+/// Refraction of the unit direction `d` through a surface with unit normal `n` facing the
+/// incoming ray (`d . n < 0`), where `eta` is n_incident / n_transmitted. Returns `None` on
+/// total internal reflection (Snell's law has no solution).
+pub fn refract(d: Vec3A, n: Vec3A, eta: f32) -> Option<Vec3A> {
+    let cos_i = (-d.dot(n)).min(1.0);
+    let sin2_t = eta * eta * (1.0 - cos_i * cos_i).max(0.0);
+    if sin2_t >= 1.0 {
+        return None;
+    }
+    let cos_t = (1.0 - sin2_t).sqrt();
+    Some((eta * d + (eta * cos_i - cos_t) * n).normalize())
+}
+
+/// Unpolarised Fresnel reflectance of a dielectric boundary, exactly (not Schlick's
+/// approximation). `cos_i` is the cosine between the incoming ray and the normal on its side
+/// (positive), `eta` is n_incident / n_transmitted. Total internal reflection gives 1.
+pub fn fresnel_dielectric(cos_i: f32, eta: f32) -> f32 {
+    let cos_i = cos_i.clamp(0.0, 1.0);
+    let sin2_t = eta * eta * (1.0 - cos_i * cos_i);
+    if sin2_t >= 1.0 {
+        return 1.0;
+    }
+    let cos_t = (1.0 - sin2_t).sqrt();
+    // With n_i = eta, n_t = 1 (only the ratio matters).
+    let r_s = (eta * cos_i - cos_t) / (eta * cos_i + cos_t);
+    let r_p = (cos_i - eta * cos_t) / (cos_i + eta * cos_t);
+    0.5 * (r_s * r_s + r_p * r_p)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn close(a: f32, b: f32, tol: f32) -> bool {
+        (a - b).abs() <= tol
+    }
+
+    #[test]
+    fn snell_law_holds_for_refracted_direction() {
+        // 30 degrees from the normal, from air (1.0) into glass (1.5).
+        let theta = 30f32.to_radians();
+        let d = Vec3A::new(theta.sin(), -theta.cos(), 0.0);
+        let n = Vec3A::Y;
+        let t = refract(d, n, 1.0 / 1.5).unwrap();
+        let sin_t = t.x;
+        assert!(close(sin_t, theta.sin() / 1.5, 1e-6), "sin_t = {sin_t}");
+        assert!(t.y < 0.0, "transmitted ray goes through the surface");
+        assert!(close(t.length(), 1.0, 1e-6));
+    }
+
+    #[test]
+    fn total_internal_reflection_past_the_critical_angle() {
+        let eta = 2.42; // diamond to air
+        let critical = (1.0f32 / eta).asin();
+        let just_below = critical - 0.01;
+        let just_above = critical + 0.01;
+        let dir = |a: f32| Vec3A::new(a.sin(), -a.cos(), 0.0);
+        assert!(refract(dir(just_below), Vec3A::Y, eta).is_some());
+        assert!(refract(dir(just_above), Vec3A::Y, eta).is_none());
+        assert_eq!(fresnel_dielectric(just_above.cos(), eta), 1.0);
+        assert!(fresnel_dielectric(just_below.cos(), eta) < 1.0);
+    }
+
+    #[test]
+    fn fresnel_matches_closed_forms() {
+        // Normal incidence: ((n1 - n2) / (n1 + n2))^2, both ways.
+        let f0 = ((1.0f32 - 1.5) / (1.0 + 1.5)).powi(2);
+        assert!(close(fresnel_dielectric(1.0, 1.0 / 1.5), f0, 1e-6));
+        assert!(close(fresnel_dielectric(1.0, 1.5), f0, 1e-6));
+        let f0_diamond = ((2.42f32 - 1.0) / 3.42).powi(2);
+        assert!(close(fresnel_dielectric(1.0, 1.0 / 2.42), f0_diamond, 1e-6));
+        // Brewster's angle: p-polarised reflectance vanishes, so F = r_s^2 / 2.
+        let n = 1.5f32;
+        let brewster = n.atan();
+        let (ci, ct) = (brewster.cos(), (brewster.sin() / n).asin().cos());
+        let r_s = (ci - n * ct) / (ci + n * ct);
+        assert!(close(
+            fresnel_dielectric(ci, 1.0 / n),
+            0.5 * r_s * r_s,
+            1e-6
+        ));
+        // Grazing incidence reflects everything.
+        assert!(close(fresnel_dielectric(0.0, 1.0 / 1.5), 1.0, 1e-6));
+    }
+
+    #[test]
+    fn reflect_mirrors_about_the_normal() {
+        let d = Vec3A::new(1.0, -1.0, 0.0).normalize();
+        let r = reflect(d, Vec3A::Y);
+        assert!(close(r.x, d.x, 1e-7) && close(r.y, -d.y, 1e-7));
+    }
+}

@@ -1,0 +1,213 @@
+//! Writing images: PNG (sRGB, 8-bit) or EXR (linear, 32-bit float), chosen by the file's
+//! extension, always through a temporary file in the same folder that is renamed into place,
+//! so a failed render never leaves a broken image or destroys an old one.
+
+use crate::film::Image;
+use std::fs::File;
+use std::io::Write;
+use std::path::{Path, PathBuf};
+
+/// Image file formats snell writes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum OutputFormat {
+    /// 8-bit sRGB PNG.
+    Png,
+    /// Linear 32-bit float OpenEXR.
+    Exr,
+}
+
+/// Why an image could not be written.
+#[derive(Debug, thiserror::Error)]
+pub enum OutputError {
+    /// The extension is not one snell writes.
+    #[error("cannot tell the image format of {0}: use a name ending in .png or .exr")]
+    UnknownFormat(PathBuf),
+    /// Creating, writing or renaming failed.
+    #[error("cannot write {path}: {source}")]
+    Io {
+        /// The output path.
+        path: PathBuf,
+        /// The cause.
+        source: std::io::Error,
+    },
+    /// Encoding failed.
+    #[error("cannot encode {path}: {source}")]
+    Encode {
+        /// The output path.
+        path: PathBuf,
+        /// The cause.
+        source: image::ImageError,
+    },
+}
+
+impl OutputFormat {
+    /// The format named by `path`'s extension.
+    pub fn from_path(path: &Path) -> Result<Self, OutputError> {
+        match path
+            .extension()
+            .and_then(|e| e.to_str())
+            .map(str::to_ascii_lowercase)
+            .as_deref()
+        {
+            Some("png") => Ok(OutputFormat::Png),
+            Some("exr") => Ok(OutputFormat::Exr),
+            _ => Err(OutputError::UnknownFormat(path.to_path_buf())),
+        }
+    }
+}
+
+/// The sRGB transfer function: linear light to encoded value, both in `[0, 1]`.
+pub fn linear_to_srgb(x: f32) -> f32 {
+    if x <= 0.003_130_8 {
+        12.92 * x
+    } else {
+        1.055 * x.powf(1.0 / 2.4) - 0.055
+    }
+}
+
+/// The image as 8-bit sRGB, clamped, row by row (`R, G, B` per pixel).
+pub fn to_srgb8(img: &Image) -> Vec<u8> {
+    img.pixels
+        .iter()
+        .flat_map(|c| c.to_array())
+        .map(|v| {
+            let v = if v.is_finite() {
+                v.clamp(0.0, 1.0)
+            } else {
+                0.0
+            };
+            (linear_to_srgb(v) * 255.0 + 0.5) as u8
+        })
+        .collect()
+}
+
+/// Encodes the image in `format`.
+pub fn encode(img: &Image, format: OutputFormat, path: &Path) -> Result<Vec<u8>, OutputError> {
+    use image::ImageEncoder;
+    let mut bytes = vec![];
+    let result = match format {
+        OutputFormat::Png => image::codecs::png::PngEncoder::new(&mut bytes).write_image(
+            &to_srgb8(img),
+            img.width,
+            img.height,
+            image::ExtendedColorType::Rgb8,
+        ),
+        OutputFormat::Exr => {
+            let floats: Vec<f32> = img.pixels.iter().flat_map(|c| c.to_array()).collect();
+            let raw: Vec<u8> = floats.iter().flat_map(|f| f.to_le_bytes()).collect();
+            image::codecs::openexr::OpenExrEncoder::new(std::io::Cursor::new(&mut bytes))
+                .write_image(
+                    &raw,
+                    img.width,
+                    img.height,
+                    image::ExtendedColorType::Rgb32F,
+                )
+        }
+    };
+    result.map_err(|source| OutputError::Encode {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    Ok(bytes)
+}
+
+/// An output file reserved before rendering: a temporary file beside the destination,
+/// created up front so an unwritable destination fails before the work starts. Dropping it
+/// without [`PendingOutput::commit`] removes the temporary file and leaves any old image alone.
+#[derive(Debug)]
+pub struct PendingOutput {
+    path: PathBuf,
+    tmp: PathBuf,
+    file: Option<File>,
+    format: OutputFormat,
+}
+
+impl PendingOutput {
+    /// Checks the format and creates the temporary file.
+    pub fn create(path: &Path) -> Result<Self, OutputError> {
+        let format = OutputFormat::from_path(path)?;
+        let io = |source| OutputError::Io {
+            path: path.to_path_buf(),
+            source,
+        };
+        let name = path.file_name().ok_or_else(|| {
+            io(std::io::Error::new(
+                std::io::ErrorKind::InvalidInput,
+                "not a file name",
+            ))
+        })?;
+        let dir = match path.parent() {
+            Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
+            _ => PathBuf::from("."),
+        };
+        let mut tmp_name = std::ffi::OsString::from(".");
+        tmp_name.push(name);
+        tmp_name.push(format!(".{}.tmp", std::process::id()));
+        let tmp = dir.join(tmp_name);
+        let file = File::create(&tmp).map_err(io)?;
+        Ok(PendingOutput {
+            path: path.to_path_buf(),
+            tmp,
+            file: Some(file),
+            format,
+        })
+    }
+
+    /// Encodes the image, writes it to the temporary file, flushes it to disk and renames it
+    /// over the destination.
+    pub fn commit(mut self, img: &Image) -> Result<(), OutputError> {
+        let bytes = encode(img, self.format, &self.path)?;
+        let io = |source| OutputError::Io {
+            path: self.path.clone(),
+            source,
+        };
+        let mut file = self.file.take().expect("commit runs once");
+        file.write_all(&bytes).map_err(io)?;
+        file.sync_all().map_err(io)?;
+        drop(file);
+        std::fs::rename(&self.tmp, &self.path).map_err(io)?;
+        Ok(())
+    }
+}
+
+impl Drop for PendingOutput {
+    fn drop(&mut self) {
+        if self.file.is_some() {
+            let _ = std::fs::remove_file(&self.tmp);
+        }
+    }
+}
+
+/// Writes `img` to `path` atomically (format from the extension).
+pub fn write_image(img: &Image, path: &Path) -> Result<(), OutputError> {
+    PendingOutput::create(path)?.commit(img)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::math::Color;
+
+    #[test]
+    fn srgb_encoding_landmarks() {
+        assert_eq!(linear_to_srgb(0.0), 0.0);
+        assert!((linear_to_srgb(1.0) - 1.0).abs() < 1e-6);
+        assert!((linear_to_srgb(0.2158605) - 128.0 / 255.0).abs() < 1e-3);
+        let mut img = Image::new(2, 1);
+        img.pixels[0] = Color::new(2.0, -1.0, f32::NAN);
+        img.pixels[1] = Color::splat(0.5);
+        assert_eq!(to_srgb8(&img), vec![255, 0, 0, 188, 188, 188]);
+    }
+
+    #[test]
+    fn unknown_extension_is_refused() {
+        assert!(matches!(
+            OutputFormat::from_path(Path::new("a.jpg")),
+            Err(OutputError::UnknownFormat(_))
+        ));
+        assert_eq!(
+            OutputFormat::from_path(Path::new("a.EXR")).unwrap(),
+            OutputFormat::Exr
+        );
+    }
+}

@@ -1,0 +1,113 @@
+//! Rendering an image: tiles over all cores (rayon), stratified jittered samples per pixel
+//! seeded from `(seed, x, y)`, so the result is the same bytes at any thread count.
+
+use crate::film::Image;
+use crate::integrator::Integrator;
+use crate::math::{Color, Rng, hash_seed};
+use crate::scene::Scene;
+use rayon::prelude::*;
+use std::sync::atomic::{AtomicU64, Ordering};
+
+/// Side of a square tile, in pixels.
+pub const TILE: u32 = 16;
+
+/// Why a render could not run.
+#[derive(Debug, thiserror::Error)]
+pub enum RenderError {
+    /// The thread pool could not be created.
+    #[error("cannot start {threads} render threads: {source}")]
+    Threads {
+        /// How many were asked for.
+        threads: usize,
+        /// The cause.
+        source: rayon::ThreadPoolBuildError,
+    },
+}
+
+/// Renders `scene` with its settings. `threads` = `None` uses every core. `progress` is
+/// called from the worker threads with the number of pixels finished so far.
+pub fn render(
+    scene: &Scene,
+    integrator: &dyn Integrator,
+    threads: Option<usize>,
+    progress: &(dyn Fn(u64) + Sync),
+) -> Result<Image, RenderError> {
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads.unwrap_or(0))
+        .build()
+        .map_err(|source| RenderError::Threads {
+            threads: threads.unwrap_or(0),
+            source,
+        })?;
+    let s = &scene.settings;
+    let (w, h) = (s.width, s.height);
+    let tiles_x = w.div_ceil(TILE);
+    let tiles_y = h.div_ceil(TILE);
+    let done = AtomicU64::new(0);
+    let tiles: Vec<Vec<Color>> = pool.install(|| {
+        (0..tiles_x * tiles_y)
+            .into_par_iter()
+            .map(|i| {
+                let (x0, y0) = ((i % tiles_x) * TILE, (i / tiles_x) * TILE);
+                let (x1, y1) = ((x0 + TILE).min(w), (y0 + TILE).min(h));
+                let mut out = Vec::with_capacity(((x1 - x0) * (y1 - y0)) as usize);
+                for y in y0..y1 {
+                    for x in x0..x1 {
+                        out.push(render_pixel(scene, integrator, x, y));
+                    }
+                }
+                let n = done.fetch_add(out.len() as u64, Ordering::Relaxed) + out.len() as u64;
+                progress(n);
+                out
+            })
+            .collect()
+    });
+    let mut image = Image::new(w, h);
+    for (i, tile) in tiles.into_iter().enumerate() {
+        let i = i as u32;
+        let (x0, y0) = ((i % tiles_x) * TILE, (i / tiles_x) * TILE);
+        let tw = (x0 + TILE).min(w) - x0;
+        for (k, c) in tile.into_iter().enumerate() {
+            let (x, y) = (x0 + k as u32 % tw, y0 + k as u32 / tw);
+            image.pixels[(y * w + x) as usize] = c;
+        }
+    }
+    Ok(image)
+}
+
+/// One pixel: `spp = n * n` samples, one jittered in each cell of an n x n grid over the
+/// filter's support, weighted by the filter. One sample per pixel goes through the centre.
+pub fn render_pixel(scene: &Scene, integrator: &dyn Integrator, x: u32, y: u32) -> Color {
+    let s = &scene.settings;
+    let (cx, cy) = (x as f32 + 0.5, y as f32 + 0.5);
+    let sample = |px: f32, py: f32| {
+        let c = integrator.radiance(scene, &scene.camera.ray(px, py, s.width, s.height));
+        // A non-finite sample would poison the whole pixel; drop it.
+        if c.is_finite() { c } else { Color::ZERO }
+    };
+    if s.spp == 1 {
+        return sample(cx, cy);
+    }
+    let n = (s.spp as f32).sqrt().round() as u32;
+    let mut rng = Rng::new(hash_seed(&[s.seed, x as u64, y as u64]));
+    let r = s.filter.radius;
+    let cell = 2.0 * r / n as f32;
+    let (mut sum, mut weight) = (Color::ZERO, 0.0f32);
+    for j in 0..n {
+        for i in 0..n {
+            let dx = -r + (i as f32 + rng.next_f32()) * cell;
+            let dy = -r + (j as f32 + rng.next_f32()) * cell;
+            let w = s.filter.weight(dx, dy);
+            if w == 0.0 {
+                continue;
+            }
+            sum += sample(cx + dx, cy + dy) * w;
+            weight += w;
+        }
+    }
+    if weight > 0.0 {
+        (sum / weight).max(Color::ZERO)
+    } else {
+        sample(cx, cy)
+    }
+}

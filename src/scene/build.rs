@@ -1,0 +1,1071 @@
+//! From a scene file to a [`Scene`]: parse, check every value, resolve names and paths, load
+//! textures. Problems are collected (not just the first) and located in the text.
+
+use super::diag::{DocPath, Format, Problem, SceneError, did_you_mean, offset_of};
+use super::format::*;
+use super::{Fog, Object, RenderSettings, Scene};
+use crate::accel::Bvh;
+use crate::camera::Camera;
+use crate::film::Filter;
+use crate::geometry::{Cone, Cuboid, Cylinder, Disk, Plane, Rect, Shape, Sphere, Triangle};
+use crate::light::Light;
+use crate::material::Material;
+use crate::math::{Color, Frame, Transform, Vec3, Vec3A};
+use crate::texture::{ColorSpace, ImageData, Mapping, Pattern, Texture};
+use std::collections::BTreeMap;
+use std::path::Path;
+use std::sync::Arc;
+
+/// Reads, checks and builds the scene in `path` (`.toml` or `.json`). Relative paths in it
+/// resolve against its folder.
+pub fn load(path: &Path) -> Result<Scene, SceneError> {
+    let format = match path.extension().and_then(|e| e.to_str()) {
+        Some(e) if e.eq_ignore_ascii_case("json") => Format::Json,
+        Some(e) if e.eq_ignore_ascii_case("toml") => Format::Toml,
+        _ => {
+            return Err(SceneError::whole_file(
+                path,
+                "a scene file must end in .toml or .json",
+            ));
+        }
+    };
+    let bytes = std::fs::read(path)
+        .map_err(|e| SceneError::whole_file(path, format!("cannot read the scene file: {e}")))?;
+    let text = String::from_utf8(bytes).map_err(|e| {
+        SceneError::whole_file(
+            path,
+            format!(
+                "the scene file is not UTF-8 text (bad byte at offset {})",
+                e.utf8_error().valid_up_to()
+            ),
+        )
+    })?;
+    let base = path.parent().unwrap_or(Path::new("."));
+    load_str(&text, path, base, format)
+}
+
+/// Builds a scene from text. `file` names it in messages; `base_dir` resolves relative paths.
+pub fn load_str(
+    text: &str,
+    file: &Path,
+    base_dir: &Path,
+    format: Format,
+) -> Result<Scene, SceneError> {
+    let def = parse(text, format).map_err(|p| SceneError::located(file, text, format, vec![p]))?;
+    let mut b = Builder {
+        problems: vec![],
+        warnings: vec![],
+        base_dir,
+    };
+    let scene = b.scene(def);
+    if b.problems.is_empty() {
+        Ok(scene)
+    } else {
+        Err(SceneError::located(file, text, format, b.problems))
+    }
+}
+
+fn parse(text: &str, format: Format) -> Result<SceneFile, Problem> {
+    parse_unrefined(text, format).map_err(|p| refine(text, format, p))
+}
+
+/// Inside tagged tables (objects, lights, textures, mappings) serde buffers values and loses
+/// their positions, so a type error is reported at the whole table. Find the value the
+/// message describes (`invalid type: string "big"`, `invalid length 2`) below it.
+fn refine(text: &str, format: Format, p: Problem) -> Problem {
+    if p.at_key || !p.message.contains("invalid ") {
+        return p;
+    }
+    let Some(described) = p.message.split("invalid ").nth(1) else {
+        return p;
+    };
+    let matches = |raw: &str| -> bool {
+        let raw = raw.trim();
+        if let Some(rest) = described.strip_prefix("type: string ") {
+            let want = rest
+                .split(", expected")
+                .next()
+                .unwrap_or("")
+                .trim_matches('"');
+            (raw.starts_with('"') || raw.starts_with('\''))
+                && raw.trim_matches(|c| c == '"' || c == '\'') == want
+        } else if let Some(rest) = described
+            .strip_prefix("type: integer `")
+            .or_else(|| described.strip_prefix("value: integer `"))
+            .or_else(|| described.strip_prefix("type: floating point `"))
+            .or_else(|| described.strip_prefix("value: floating point `"))
+        {
+            let want = rest.split('`').next().unwrap_or("");
+            raw.parse::<f64>()
+                .ok()
+                .zip(want.parse::<f64>().ok())
+                .is_some_and(|(a, b)| a == b)
+        } else if let Some(rest) = described.strip_prefix("type: boolean `") {
+            raw == rest.split('`').next().unwrap_or("")
+        } else if described.starts_with("type: sequence") {
+            raw.starts_with('[')
+        } else if let Some(rest) = described.strip_prefix("length ") {
+            let n: usize = rest
+                .split(',')
+                .next()
+                .unwrap_or("")
+                .parse()
+                .unwrap_or(usize::MAX);
+            raw.starts_with('[') && count_items(raw) == Some(n)
+        } else {
+            false
+        }
+    };
+    let found = super::diag::values_below(text, format, &p.path)
+        .into_iter()
+        .find(|(_, span)| text.get(span.clone()).is_some_and(matches));
+    match found {
+        Some((path, span)) if path != p.path => {
+            let message = p.message.clone();
+            Problem {
+                span: Some(span),
+                ..Problem::new(path, message)
+            }
+            .with_help(p.help)
+        }
+        _ => p,
+    }
+}
+
+/// Number of items in a flat array literal such as `[1, 2]` (`None` if it nests).
+fn count_items(raw: &str) -> Option<usize> {
+    let inner = raw.strip_prefix('[')?.strip_suffix(']')?;
+    if inner.contains('[') || inner.contains('{') {
+        return None;
+    }
+    Some(inner.split(',').filter(|x| !x.trim().is_empty()).count())
+}
+
+fn parse_unrefined(text: &str, format: Format) -> Result<SceneFile, Problem> {
+    match format {
+        Format::Toml => {
+            let table = toml::de::DeTable::parse(text).map_err(|e| Problem {
+                span: e.span(),
+                ..Problem::new(
+                    DocPath::default(),
+                    format!("TOML syntax: {}", e.message().trim_end()),
+                )
+            })?;
+            serde_path_to_error::deserialize(toml::de::Deserializer::from(table)).map_err(|e| {
+                let span = e.inner().span();
+                serde_problem(e.path(), e.inner().message(), span)
+            })
+        }
+        Format::Json => {
+            let mut de = serde_json::Deserializer::from_str(text);
+            let result: Result<SceneFile, _> = serde_path_to_error::deserialize(&mut de);
+            let syntax = |inner: &serde_json::Error| {
+                let at = offset_of(text, inner.line(), inner.column());
+                let msg = inner.to_string();
+                // serde_json appends " at line L column C"; the location is shown anyway.
+                let msg = msg.split(" at line ").next().unwrap_or(&msg).to_string();
+                (at, msg)
+            };
+            if let Ok(v) = result {
+                return de.end().map(|_| v).map_err(|e| {
+                    let (at, msg) = syntax(&e);
+                    Problem {
+                        span: Some(at..at),
+                        ..Problem::new(DocPath::default(), format!("JSON syntax: {msg}"))
+                    }
+                });
+            }
+            result.map_err(|e| {
+                let inner = e.inner();
+                let (at, msg) = syntax(inner);
+                if inner.is_syntax() || inner.is_eof() {
+                    Problem {
+                        span: Some(at..at),
+                        ..Problem::new(DocPath::default(), format!("JSON syntax: {msg}"))
+                    }
+                } else {
+                    let mut p = serde_problem(e.path(), &msg, None);
+                    if p.path.0.is_empty() && p.span.is_none() {
+                        p.span = Some(at..at);
+                    }
+                    p
+                }
+            })
+        }
+    }
+}
+
+/// Turns a serde error at a path into a problem with a hint.
+fn serde_problem(
+    path: &serde_path_to_error::Path,
+    message: &str,
+    span: Option<std::ops::Range<usize>>,
+) -> Problem {
+    use serde_path_to_error::Segment;
+    let mut doc = DocPath::default();
+    for seg in path.iter() {
+        match seg {
+            Segment::Seq { index } => doc = doc.index(*index),
+            Segment::Map { key } => doc = doc.key(key),
+            Segment::Enum { .. } => {}
+            Segment::Unknown => break,
+        }
+    }
+    let message = message.trim_end().to_string();
+    if let Some(field) = between(&message, "unknown field `", "`") {
+        let expected = backticked(message.split_once("expected").map_or("", |x| x.1));
+        let mut p = Problem::new(doc.key(field), format!("unknown key `{field}`"));
+        p.at_key = true;
+        p.help = Some(
+            match did_you_mean(field, expected.iter().map(String::as_str)) {
+                Some(s) => format!("did you mean `{s}`?"),
+                None if expected.is_empty() => "this table takes no keys".to_string(),
+                None => format!("known keys here: {}", expected.join(", ")),
+            },
+        );
+        return p;
+    }
+    if let Some(variant) = between(&message, "unknown variant `", "`") {
+        let expected = backticked(message.split_once("expected").map_or("", |x| x.1));
+        let mut p = Problem::new(doc, format!("unknown type `{variant}`"));
+        p.span = span;
+        p.help = Some(
+            match did_you_mean(variant, expected.iter().map(String::as_str)) {
+                Some(s) => format!("did you mean `{s}`?"),
+                None => format!("expected one of: {}", expected.join(", ")),
+            },
+        );
+        return p;
+    }
+    if let Some(field) = between(&message, "missing field `", "`") {
+        let mut p = Problem::new(doc, format!("missing key `{field}`"));
+        p.span = span;
+        p.help = Some(format!(
+            "add `{field} = ...` here (see docs/scene-format.md)"
+        ));
+        return p;
+    }
+    let mut p = Problem::new(
+        doc,
+        message
+            .replace("f32", "a number")
+            .replace("u32", "a whole number ≥ 0")
+            .replace("u64", "a whole number ≥ 0"),
+    );
+    p.span = span;
+    p
+}
+
+fn between<'a>(s: &'a str, start: &str, end: &str) -> Option<&'a str> {
+    let rest = &s[s.find(start)? + start.len()..];
+    Some(&rest[..rest.find(end)?])
+}
+
+fn backticked(s: &str) -> Vec<String> {
+    s.split('`')
+        .skip(1)
+        .step_by(2)
+        .map(str::to_string)
+        .collect()
+}
+
+struct Builder<'a> {
+    problems: Vec<Problem>,
+    warnings: Vec<String>,
+    base_dir: &'a Path,
+}
+
+impl Builder<'_> {
+    fn error(&mut self, path: DocPath, msg: impl Into<String>) {
+        self.problems.push(Problem::new(path, msg));
+    }
+
+    fn error_help(&mut self, path: DocPath, msg: impl Into<String>, help: impl Into<String>) {
+        self.problems.push(Problem::new(path, msg).help(help));
+    }
+
+    fn finite(&mut self, x: f32, path: &DocPath) -> f32 {
+        if x.is_finite() {
+            x
+        } else {
+            self.error(path.clone(), format!("must be a finite number, not {x}"));
+            0.0
+        }
+    }
+
+    fn positive(&mut self, x: f32, path: &DocPath) -> f32 {
+        let x = self.finite(x, path);
+        if x <= 0.0 {
+            self.error(path.clone(), format!("must be greater than 0, not {x}"));
+            return 1.0;
+        }
+        x
+    }
+
+    fn in_range(&mut self, x: f32, lo: f32, hi: f32, path: &DocPath) -> f32 {
+        let x = self.finite(x, path);
+        if !(lo..=hi).contains(&x) {
+            self.error(
+                path.clone(),
+                format!("must be between {lo} and {hi}, not {x}"),
+            );
+            return x.clamp(lo, hi);
+        }
+        x
+    }
+
+    fn point(&mut self, v: V3, path: &DocPath) -> Vec3A {
+        if v.iter().all(|x| x.is_finite()) {
+            Vec3A::from_array(v)
+        } else {
+            self.error(path.clone(), format!("must be finite numbers, not {v:?}"));
+            Vec3A::ZERO
+        }
+    }
+
+    fn direction(&mut self, v: V3, path: &DocPath) -> Vec3A {
+        let p = self.point(v, path);
+        let len = p.length();
+        if len == 0.0 || !len.is_finite() {
+            if p.is_finite() {
+                self.error(
+                    path.clone(),
+                    "must not be the zero vector: it gives the direction",
+                );
+            }
+            return Vec3A::Y;
+        }
+        p / len
+    }
+
+    fn color(&mut self, c: ColorDef, path: &DocPath) -> Color {
+        let v = Vec3A::from_array(c.0);
+        if !v.is_finite() || v.min_element() < 0.0 {
+            self.error(
+                path.clone(),
+                format!("colour components must be finite and ≥ 0, not {:?}", c.0),
+            );
+            return Color::ZERO;
+        }
+        v
+    }
+
+    fn scene(&mut self, def: SceneFile) -> Scene {
+        let root = DocPath::default();
+        let settings = self.settings(&def.image, &root.key("image"));
+        let camera = self.camera(&def.camera, &root.key("camera"));
+        let background = self.color(def.image.background, &root.key("image").key("background"));
+        let ambient = self.color(def.world.ambient, &root.key("world").key("ambient"));
+        let fog = def.fog.as_ref().map(|f| self.fog(f, &root.key("fog")));
+
+        let mut textures = vec![];
+        let mut texture_names = BTreeMap::new();
+        for (name, t) in &def.textures {
+            let path = root.key("textures").key(name);
+            texture_names.insert(name.clone(), textures.len());
+            textures.push(self.texture(t, &path));
+        }
+        let mut used_textures = vec![false; textures.len()];
+
+        let mut materials = vec![];
+        let mut material_names = vec![];
+        for (name, m) in &def.materials {
+            let path = root.key("materials").key(name);
+            let texture = match (&m.color, &m.texture) {
+                (Some(_), Some(_)) => {
+                    self.error_help(
+                        path.key("texture"),
+                        "a material takes `color` or `texture`, not both",
+                        "remove one of them",
+                    );
+                    0
+                }
+                (None, Some(t)) => match texture_names.get(t) {
+                    Some(&i) => {
+                        used_textures[i] = true;
+                        i
+                    }
+                    None => {
+                        let help = match did_you_mean(t, texture_names.keys().map(String::as_str)) {
+                            Some(s) => format!("did you mean `{s}`?"),
+                            None if texture_names.is_empty() => {
+                                "define it under [textures.NAME]".to_string()
+                            }
+                            None => format!(
+                                "defined textures: {}",
+                                texture_names.keys().cloned().collect::<Vec<_>>().join(", ")
+                            ),
+                        };
+                        self.error_help(
+                            path.key("texture"),
+                            format!("no texture named `{t}`"),
+                            help,
+                        );
+                        0
+                    }
+                },
+                (c, None) => {
+                    let c = c.map_or(Color::ONE, |c| self.color(c, &path.key("color")));
+                    textures.push(Texture::solid(c));
+                    textures.len() - 1
+                }
+            };
+            let ambient = self.in_range(m.ambient, 0.0, f32::MAX, &path.key("ambient"));
+            let diffuse = self.in_range(m.diffuse, 0.0, f32::MAX, &path.key("diffuse"));
+            let specular = self.color(m.specular, &path.key("specular"));
+            let shininess = self.in_range(m.shininess, 0.0, f32::MAX, &path.key("shininess"));
+            let reflectivity = self.in_range(m.reflectivity, 0.0, 1.0, &path.key("reflectivity"));
+            let transparency = self.in_range(m.transparency, 0.0, 1.0, &path.key("transparency"));
+            let ior = self.positive(m.ior, &path.key("ior"));
+            let absorption = self.color(m.absorption, &path.key("absorption"));
+            materials.push(Material {
+                texture,
+                ambient,
+                diffuse,
+                specular,
+                shininess,
+                reflectivity,
+                transparency,
+                ior,
+                absorption,
+            });
+            material_names.push(name.clone());
+        }
+        for (name, &i) in &texture_names {
+            if !used_textures[i] {
+                self.warnings.push(format!(
+                    "texture `{name}` is defined but no material uses it"
+                ));
+            }
+        }
+
+        let lights: Vec<Light> = def
+            .lights
+            .iter()
+            .enumerate()
+            .map(|(i, l)| self.light(l, &root.key("lights").index(i)))
+            .collect();
+
+        let mut used_materials = vec![false; materials.len()];
+        let mut objects = vec![];
+        for (i, o) in def.objects.iter().enumerate() {
+            let path = root.key("objects").index(i);
+            if let Some(obj) = self.object(o, i, &path, &material_names) {
+                used_materials[obj.material] = true;
+                objects.push(obj);
+            }
+        }
+        for (name, used) in material_names.iter().zip(&used_materials) {
+            if !used {
+                self.warnings.push(format!(
+                    "material `{name}` is defined but no object uses it"
+                ));
+            }
+        }
+        if objects.is_empty() && self.problems.is_empty() {
+            self.warnings
+                .push("the scene has no objects: the image will be the background".into());
+        }
+        if lights.is_empty() {
+            self.warnings
+                .push("the scene has no lights: only ambient light will show".into());
+        }
+        for (li, l) in lights.iter().enumerate() {
+            if let Some(p) = l.position() {
+                for o in objects.iter().filter(|o| o.contains(p)) {
+                    let m = &materials[o.material];
+                    if !m.is_transparent() {
+                        self.warnings.push(format!(
+                            "light {li} at {p} is inside object `{}`: nothing outside it will be lit by this light",
+                            o.name
+                        ));
+                    }
+                }
+            }
+        }
+
+        let accel = Bvh::build(&objects);
+        let transparent: Vec<bool> = objects
+            .iter()
+            .map(|o| materials[o.material].is_transparent())
+            .collect();
+        let transparent_objects = (0..objects.len()).filter(|&i| transparent[i]).collect();
+        let needs_uv = objects
+            .iter()
+            .map(|o| {
+                let t = &textures[materials[o.material].texture];
+                !matches!(t.pattern, Pattern::Solid(_)) && matches!(t.mapping, Mapping::Uv)
+            })
+            .collect();
+        Scene {
+            camera,
+            settings,
+            background,
+            ambient,
+            fog,
+            objects,
+            materials,
+            textures,
+            texture_names,
+            material_names,
+            lights,
+            warnings: std::mem::take(&mut self.warnings),
+            accel,
+            transparent,
+            transparent_objects,
+            needs_uv,
+        }
+    }
+
+    fn settings(&mut self, d: &ImageDef, path: &DocPath) -> RenderSettings {
+        if let Err(e) = RenderSettings::check_side("width", d.width) {
+            self.error(path.key("width"), e);
+        }
+        if let Err(e) = RenderSettings::check_side("height", d.height) {
+            self.error(path.key("height"), e);
+        }
+        if let Err((e, help)) = RenderSettings::check_spp(d.samples) {
+            self.problems.push(Problem {
+                help,
+                ..Problem::new(path.key("samples"), e)
+            });
+        }
+        if d.max_depth == 0 || d.max_depth > RenderSettings::MAX_DEPTH {
+            self.error(
+                path.key("max_depth"),
+                format!(
+                    "must be between 1 (camera rays only) and {}, not {}",
+                    RenderSettings::MAX_DEPTH,
+                    d.max_depth
+                ),
+            );
+        }
+        let fpath = path.key("filter");
+        let radius = d.filter.radius.map(|r| {
+            let r = self.positive(r, &fpath.key("radius"));
+            if r > 8.0 {
+                self.error(
+                    fpath.key("radius"),
+                    format!("must be at most 8 pixels, not {r}"),
+                );
+            }
+            r
+        });
+        RenderSettings {
+            width: d.width,
+            height: d.height,
+            spp: d.samples,
+            max_depth: d.max_depth,
+            seed: d.seed,
+            filter: Filter::new(d.filter.kind, radius),
+        }
+    }
+
+    fn camera(&mut self, d: &CameraDef, path: &DocPath) -> Camera {
+        let position = self.point(d.position, &path.key("position"));
+        let look_at = self.point(d.look_at, &path.key("look_at"));
+        let up = self.direction(d.up, &path.key("up"));
+        let fov = self.finite(d.fov, &path.key("fov"));
+        if !(fov > 0.0 && fov < 180.0) {
+            self.error_help(
+                path.key("fov"),
+                format!("field of view must be between 0 and 180 degrees (exclusive), not {fov}"),
+                "the seed scene uses 28.07",
+            );
+        }
+        let forward = look_at - position;
+        if forward.length_squared() == 0.0 {
+            self.error(
+                path.key("look_at"),
+                "the camera looks at its own position: look_at must differ from position",
+            );
+            return Camera::new(Vec3A::ZERO, -Vec3A::Z, Vec3A::Y, 45.0);
+        }
+        if forward.normalize().cross(up).length() < 1e-6 {
+            self.error_help(
+                path.key("up"),
+                "up is parallel to the viewing direction, so the camera's roll is undefined",
+                "choose an up vector not along look_at - position",
+            );
+            return Camera::new(Vec3A::ZERO, -Vec3A::Z, Vec3A::Y, 45.0);
+        }
+        Camera::new(
+            position,
+            look_at,
+            up,
+            if fov > 0.0 && fov < 180.0 { fov } else { 45.0 },
+        )
+    }
+
+    fn fog(&mut self, d: &FogDef, path: &DocPath) -> Fog {
+        let color = self.color(d.color, &path.key("color"));
+        match d.mode {
+            FogMode::Linear => {
+                let start = self.in_range(d.start, 0.0, f32::MAX, &path.key("start"));
+                let Some(end) = d.end else {
+                    self.error_help(
+                        path.clone(),
+                        "linear fog needs `end`",
+                        "add `end = DISTANCE` where the fog becomes complete",
+                    );
+                    return Fog::Linear {
+                        color,
+                        start,
+                        end: start + 1.0,
+                    };
+                };
+                let end = self.finite(end, &path.key("end"));
+                if end <= start {
+                    self.error(
+                        path.key("end"),
+                        format!("must be greater than start ({start}), not {end}"),
+                    );
+                }
+                if d.density.is_some() {
+                    self.error_help(
+                        path.key("density"),
+                        "density belongs to exponential fog",
+                        "use mode = \"exponential\" or remove density",
+                    );
+                }
+                Fog::Linear {
+                    color,
+                    start,
+                    end: end.max(start + 1e-3),
+                }
+            }
+            FogMode::Exponential => {
+                let density = match d.density {
+                    Some(x) => self.positive(x, &path.key("density")),
+                    None => {
+                        self.error_help(
+                            path.clone(),
+                            "exponential fog needs `density`",
+                            "add `density = 0.01` (per scene unit)",
+                        );
+                        1.0
+                    }
+                };
+                if d.end.is_some() {
+                    self.error_help(
+                        path.key("end"),
+                        "end belongs to linear fog",
+                        "use mode = \"linear\" or remove end",
+                    );
+                }
+                Fog::Exponential { color, density }
+            }
+        }
+    }
+
+    fn mapping(&mut self, d: &MappingDef, path: &DocPath) -> Mapping {
+        match d {
+            MappingDef::Uv => Mapping::Uv,
+            MappingDef::Spherical { center, rotate } => {
+                let center = center.map(|c| self.point(c, &path.key("center")));
+                let r = self.point(*rotate, &path.key("rotate"));
+                let rotation = (r != Vec3A::ZERO).then(|| Transform::rotation(Vec3::from(r)));
+                Mapping::Spherical { center, rotation }
+            }
+            MappingDef::Cylindrical {
+                center,
+                axis,
+                height,
+            } => Mapping::Cylindrical {
+                center: center.map(|c| self.point(c, &path.key("center"))),
+                frame: Frame::from_axis(self.direction(*axis, &path.key("axis"))),
+                height: self.positive(*height, &path.key("height")),
+            },
+            MappingDef::Planar { origin, u, v } => {
+                let origin = self.point(*origin, &path.key("origin"));
+                let u_axis = self.point(*u, &path.key("u"));
+                let v_axis = self.point(*v, &path.key("v"));
+                if u_axis.cross(v_axis).length_squared() == 0.0 {
+                    self.error(
+                        path.key("v"),
+                        "the u and v axes must be non-zero and not parallel",
+                    );
+                }
+                Mapping::planar(origin, u_axis, v_axis)
+            }
+        }
+    }
+
+    fn texture(&mut self, d: &TextureDef, path: &DocPath) -> Texture {
+        match d {
+            TextureDef::Solid { color } => Texture::solid(self.color(*color, &path.key("color"))),
+            TextureDef::Image {
+                file,
+                color_space,
+                mapping,
+            } => {
+                let mapping = self.mapping(mapping, &path.key("mapping"));
+                let full = self.base_dir.join(file);
+                let space = match color_space {
+                    ColorSpaceDef::Srgb => ColorSpace::Srgb,
+                    ColorSpaceDef::Linear => ColorSpace::Linear,
+                };
+                let pattern = match ImageData::load(&full, space) {
+                    Ok(img) => Pattern::Image(Arc::new(img)),
+                    Err(e) => {
+                        self.error_help(
+                            path.key("file"),
+                            format!("cannot load texture: {e}"),
+                            "paths are relative to the scene file's folder; PNG, JPEG and BMP are supported",
+                        );
+                        Pattern::Solid(Color::ONE)
+                    }
+                };
+                Texture { pattern, mapping }
+            }
+            TextureDef::Checker {
+                even,
+                odd,
+                size,
+                mapping,
+            } => Texture {
+                pattern: Pattern::Checker {
+                    even: self.color(*even, &path.key("even")),
+                    odd: self.color(*odd, &path.key("odd")),
+                    size: self.positive(*size, &path.key("size")),
+                },
+                mapping: self.mapping(mapping, &path.key("mapping")),
+            },
+            TextureDef::Stripes {
+                a,
+                b,
+                width,
+                mapping,
+            } => Texture {
+                pattern: Pattern::Stripes {
+                    a: self.color(*a, &path.key("a")),
+                    b: self.color(*b, &path.key("b")),
+                    width: self.positive(*width, &path.key("width")),
+                },
+                mapping: self.mapping(mapping, &path.key("mapping")),
+            },
+        }
+    }
+
+    fn light(&mut self, d: &LightDef, path: &DocPath) -> Light {
+        match d {
+            LightDef::Point {
+                position,
+                color,
+                intensity,
+            } => Light::Point {
+                position: self.point(*position, &path.key("position")),
+                color: self.color(*color, &path.key("color"))
+                    * self.in_range(*intensity, 0.0, f32::MAX, &path.key("intensity")),
+            },
+            LightDef::Directional {
+                direction,
+                color,
+                intensity,
+            } => Light::Directional {
+                direction: self.direction(*direction, &path.key("direction")),
+                color: self.color(*color, &path.key("color"))
+                    * self.in_range(*intensity, 0.0, f32::MAX, &path.key("intensity")),
+            },
+            LightDef::Spot {
+                position,
+                look_at,
+                direction,
+                color,
+                intensity,
+                angle,
+                soft_edge,
+            } => {
+                let position = self.point(*position, &path.key("position"));
+                let direction = match (look_at, direction) {
+                    (Some(_), Some(_)) => {
+                        self.error_help(
+                            path.key("direction"),
+                            "a spot light takes `look_at` or `direction`, not both",
+                            "remove one of them",
+                        );
+                        -Vec3A::Y
+                    }
+                    (None, None) => {
+                        self.error_help(
+                            path.clone(),
+                            "a spot light needs `look_at` or `direction`",
+                            "add `look_at = [x, y, z]`, the point the cone is aimed at",
+                        );
+                        -Vec3A::Y
+                    }
+                    (Some(l), None) => {
+                        let target = self.point(*l, &path.key("look_at"));
+                        let d = target - position;
+                        if d.length_squared() == 0.0 {
+                            self.error(
+                                path.key("look_at"),
+                                "the spot light looks at its own position",
+                            );
+                            -Vec3A::Y
+                        } else {
+                            d.normalize()
+                        }
+                    }
+                    (None, Some(d)) => self.direction(*d, &path.key("direction")),
+                };
+                let angle = self.finite(*angle, &path.key("angle"));
+                if !(angle > 0.0 && angle < 180.0) {
+                    self.error(path.key("angle"), format!("the cone's half-angle must be between 0 and 180 degrees (exclusive), not {angle}"));
+                }
+                let soft = self.in_range(*soft_edge, 0.0, angle.max(0.0), &path.key("soft_edge"));
+                Light::Spot {
+                    position,
+                    direction,
+                    color: self.color(*color, &path.key("color"))
+                        * self.in_range(*intensity, 0.0, f32::MAX, &path.key("intensity")),
+                    cos_outer: angle.to_radians().cos(),
+                    cos_inner: (angle - soft).to_radians().cos(),
+                }
+            }
+        }
+    }
+
+    fn object(
+        &mut self,
+        d: &ObjectDef,
+        index: usize,
+        path: &DocPath,
+        material_names: &[String],
+    ) -> Option<Object> {
+        let (name, material, transform) = d.common();
+        let material = match material_names.iter().position(|m| m == material) {
+            Some(i) => Some(i),
+            None => {
+                let help = match did_you_mean(material, material_names.iter().map(String::as_str)) {
+                    Some(s) => format!("did you mean `{s}`?"),
+                    None if material_names.is_empty() => {
+                        "define it under [materials.NAME]".to_string()
+                    }
+                    None => format!("defined materials: {}", material_names.join(", ")),
+                };
+                self.error_help(
+                    path.key("material"),
+                    format!("no material named `{material}`"),
+                    help,
+                );
+                None
+            }
+        };
+        let transform = transform
+            .as_ref()
+            .and_then(|t| self.transform(t, &path.key("transform")));
+        let shape = self.shape(d, path)?;
+        let name = name
+            .clone()
+            .unwrap_or_else(|| format!("{} #{index}", shape.kind()));
+        let local_bounds = shape.bounds();
+        let world_bounds = local_bounds.map(|b| match &transform {
+            Some(t) => t.bounds_to_world(&b),
+            None => b,
+        });
+        Some(Object {
+            name,
+            center: local_bounds.map_or(Vec3A::ZERO, |b| b.center()),
+            shape,
+            transform,
+            material: material?,
+            world_bounds,
+        })
+    }
+
+    fn transform(&mut self, d: &TransformDef, path: &DocPath) -> Option<Transform> {
+        let scale = self.point(d.scale.0, &path.key("scale"));
+        let rotate = self.point(d.rotate, &path.key("rotate"));
+        let translate = self.point(d.translate, &path.key("translate"));
+        if scale.cmpeq(Vec3A::ZERO).any() {
+            self.error_help(
+                path.key("scale"),
+                "a scale of 0 flattens the object to nothing",
+                "use a non-zero scale on every axis",
+            );
+            return None;
+        }
+        if scale == Vec3A::ONE && rotate == Vec3A::ZERO && translate == Vec3A::ZERO {
+            return None;
+        }
+        Transform::from_srt(scale.into(), rotate.into(), translate.into())
+    }
+
+    fn shape(&mut self, d: &ObjectDef, path: &DocPath) -> Option<Shape> {
+        let before = self.problems.len();
+        let shape = match d {
+            ObjectDef::Sphere(s) => Shape::Sphere(Sphere {
+                center: self.point(s.center, &path.key("center")),
+                radius: self.positive(s.radius, &path.key("radius")),
+            }),
+            ObjectDef::Plane(s) => Shape::Plane(Plane::new(
+                self.point(s.point, &path.key("point")),
+                self.direction(s.normal, &path.key("normal")),
+            )),
+            ObjectDef::Rectangle(s) => {
+                let corner = self.point(s.corner, &path.key("corner"));
+                let u = self.point(s.edge_u, &path.key("edge_u"));
+                let v = self.point(s.edge_v, &path.key("edge_v"));
+                match Rect::new(corner, u, v) {
+                    Some(r) => Shape::Rect(r),
+                    None => {
+                        self.error(path.key("edge_v"), "the edges must be non-zero and not parallel (the rectangle has no area)");
+                        return None;
+                    }
+                }
+            }
+            ObjectDef::Cuboid(s) => {
+                let min = self.point(s.min, &path.key("min"));
+                let max = self.point(s.max, &path.key("max"));
+                if min.cmpge(max).any() {
+                    self.error_help(
+                        path.key("max"),
+                        format!(
+                            "max {:?} must be greater than min {:?} on every axis",
+                            s.max, s.min
+                        ),
+                        "min is the smallest corner, max the largest",
+                    );
+                }
+                Shape::Cuboid(Cuboid { min, max })
+            }
+            ObjectDef::Cylinder(s) => Shape::Cylinder(Cylinder::new(
+                self.point(s.base, &path.key("base")),
+                self.direction(s.axis, &path.key("axis")),
+                self.positive(s.radius, &path.key("radius")),
+                self.positive(s.height, &path.key("height")),
+                s.capped,
+            )),
+            ObjectDef::Cone(s) => Shape::Cone(Cone::new(
+                self.point(s.base, &path.key("base")),
+                self.direction(s.axis, &path.key("axis")),
+                self.positive(s.radius, &path.key("radius")),
+                self.positive(s.height, &path.key("height")),
+                s.capped,
+            )),
+            ObjectDef::Disk(s) => Shape::Disk(Disk::new(
+                self.point(s.center, &path.key("center")),
+                self.direction(s.normal, &path.key("normal")),
+                self.positive(s.radius, &path.key("radius")),
+            )),
+            ObjectDef::Triangle(s) => {
+                let vp = path.key("vertices");
+                let [a, b, c] = [0, 1, 2].map(|i| self.point(s.vertices[i], &vp.index(i)));
+                match Triangle::new(a, b, c) {
+                    Some(t) => Shape::Triangle(t),
+                    None => {
+                        self.error(vp, "the triangle has no area (its corners are on one line)");
+                        return None;
+                    }
+                }
+            }
+        };
+        (self.problems.len() == before).then_some(shape)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn errors(text: &str) -> String {
+        match load_str(text, Path::new("t.toml"), Path::new("."), Format::Toml) {
+            Ok(_) => panic!("expected an error"),
+            Err(e) => e.to_string(),
+        }
+    }
+
+    const CAMERA: &str = "[camera]\nlook_at = [0, 0, -1]\n[materials.m]\ncolor = 1\n";
+
+    #[test]
+    fn unknown_key_points_at_the_key_with_a_suggestion() {
+        let e = errors(&format!(
+            "{CAMERA}[[objects]]\ntype = \"sphere\"\nmaterial = \"m\"\nradus = 2\n"
+        ));
+        assert!(
+            e.contains("t.toml:8:1: objects[0].radus: unknown key `radus`"),
+            "{e}"
+        );
+        assert!(e.contains("did you mean `radius`?"), "{e}");
+    }
+
+    #[test]
+    fn impossible_values_are_all_reported() {
+        let e = errors(&format!(
+            "{CAMERA}[[objects]]\ntype = \"sphere\"\nmaterial = \"m\"\nradius = -1\n[[objects]]\ntype = \"cylinder\"\nmaterial = \"m\"\naxis = [0, 0, 0]\nradius = 1\nheight = 2\n"
+        ));
+        assert!(
+            e.contains("t.toml:8:10: objects[0].radius: must be greater than 0, not -1"),
+            "{e}"
+        );
+        assert!(
+            e.contains("t.toml:12:8: objects[1].axis: must not be the zero vector"),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn missing_material_suggests_a_name() {
+        let e = errors(&format!(
+            "{CAMERA}[[objects]]\ntype = \"sphere\"\nmaterial = \"n\"\nradius = 1\n"
+        ));
+        assert!(
+            e.contains("no material named `n`") && e.contains("did you mean `m`?"),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn wrong_type_and_unknown_shape() {
+        let e = errors(&format!(
+            "{CAMERA}[[objects]]\ntype = \"sphere\"\nmaterial = \"m\"\nradius = \"big\"\n"
+        ));
+        assert!(
+            e.contains("t.toml:8:10") && e.contains("expected a number"),
+            "{e}"
+        );
+        let e = errors(&format!(
+            "{CAMERA}[[objects]]\ntype = \"spere\"\nmaterial = \"m\"\n"
+        ));
+        assert!(
+            e.contains("unknown type `spere`") && e.contains("did you mean `sphere`?"),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn fov_out_of_range_and_toml_syntax() {
+        let e = errors("[camera]\nlook_at = [0, 0, -1]\nfov = 180\n");
+        assert!(
+            e.contains("t.toml:3:7: camera.fov: field of view must be between 0 and 180"),
+            "{e}"
+        );
+        let e = errors("[camera]\nlook_at = [0, 0, -1\n");
+        assert!(e.contains("t.toml:2:") && e.contains("TOML syntax"), "{e}");
+    }
+
+    #[test]
+    fn json_uses_the_same_types_and_locates_errors() {
+        let json = "{\n  \"camera\": {\"look_at\": [0, 0, -1]},\n  \"materials\": {\"m\": {\"color\": 1}},\n  \"objects\": [{\"type\": \"sphere\", \"material\": \"m\", \"radius\": 0}]\n}\n";
+        let e = load_str(json, Path::new("t.json"), Path::new("."), Format::Json)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("t.json:4:") && e.contains("objects[0].radius: must be greater than 0"),
+            "{e}"
+        );
+        let ok = json.replace("\"radius\": 0", "\"radius\": 2");
+        let s = load_str(&ok, Path::new("t.json"), Path::new("."), Format::Json).unwrap();
+        assert_eq!(s.objects.len(), 1);
+        let e = load_str(
+            "{\"camera\": {\"look_at\": [0,0,-1]}, }",
+            Path::new("t.json"),
+            Path::new("."),
+            Format::Json,
+        )
+        .unwrap_err()
+        .to_string();
+        assert!(e.contains("t.json:1:") && e.contains("JSON syntax"), "{e}");
+    }
+}

@@ -1,0 +1,575 @@
+//! The scene file, one to one: serde types for TOML and JSON. Every table rejects keys it
+//! does not know. Defaults live here, checks of values live in `build`. docs/scene-format.md
+//! documents every key.
+
+use serde::Deserialize;
+use serde::de::{self, Deserializer, SeqAccess, Visitor};
+use std::collections::BTreeMap;
+use std::fmt;
+
+/// A point or vector `[x, y, z]` in scene units.
+pub type V3 = [f32; 3];
+
+/// A whole scene file.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SceneFile {
+    /// Picture size, sampling and limits.
+    #[serde(default)]
+    pub image: ImageDef,
+    /// The camera.
+    pub camera: CameraDef,
+    /// Light everywhere.
+    #[serde(default)]
+    pub world: WorldDef,
+    /// Optional fog.
+    pub fog: Option<FogDef>,
+    /// Named textures.
+    #[serde(default)]
+    pub textures: BTreeMap<String, TextureDef>,
+    /// Named materials.
+    #[serde(default)]
+    pub materials: BTreeMap<String, MaterialDef>,
+    /// Light sources.
+    #[serde(default)]
+    pub lights: Vec<LightDef>,
+    /// Shapes.
+    #[serde(default)]
+    pub objects: Vec<ObjectDef>,
+}
+
+/// `[image]`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct ImageDef {
+    /// Width in pixels.
+    pub width: u32,
+    /// Height in pixels.
+    pub height: u32,
+    /// Samples per pixel, a square number (n x n stratified).
+    pub samples: u32,
+    /// Reconstruction filter.
+    pub filter: FilterDef,
+    /// Colour of rays that hit nothing.
+    pub background: ColorDef,
+    /// Longest chain of rays (camera ray included).
+    pub max_depth: u32,
+    /// Seed of the sample jitter.
+    pub seed: u64,
+}
+
+impl Default for ImageDef {
+    fn default() -> Self {
+        ImageDef {
+            width: 800,
+            height: 600,
+            samples: 1,
+            filter: FilterDef::default(),
+            background: ColorDef([0.0; 3]),
+            max_depth: 5,
+            seed: 0,
+        }
+    }
+}
+
+/// `filter = { type = "...", radius = ... }`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FilterDef {
+    /// Filter shape.
+    #[serde(rename = "type")]
+    pub kind: FilterKind,
+    /// Half-width in pixels; default depends on the type.
+    pub radius: Option<f32>,
+}
+
+impl Default for FilterDef {
+    fn default() -> Self {
+        FilterDef {
+            kind: FilterKind::Gaussian,
+            radius: None,
+        }
+    }
+}
+
+pub use crate::film::FilterKind;
+
+/// `[camera]`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CameraDef {
+    /// Eye position.
+    #[serde(default)]
+    pub position: V3,
+    /// Point looked at.
+    pub look_at: V3,
+    /// Which way is up.
+    #[serde(default = "y_axis")]
+    pub up: V3,
+    /// Vertical field of view in degrees.
+    #[serde(default = "default_fov")]
+    pub fov: f32,
+}
+
+/// `[world]`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct WorldDef {
+    /// Global ambient light.
+    pub ambient: ColorDef,
+}
+
+impl Default for WorldDef {
+    fn default() -> Self {
+        WorldDef {
+            ambient: ColorDef([0.1; 3]),
+        }
+    }
+}
+
+/// `[fog]`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FogDef {
+    /// How fog thickens with distance.
+    pub mode: FogMode,
+    /// Colour far away.
+    #[serde(default = "grey_half")]
+    pub color: ColorDef,
+    /// Linear: distance where fog begins.
+    #[serde(default)]
+    pub start: f32,
+    /// Linear: distance where fog is complete.
+    pub end: Option<f32>,
+    /// Exponential: density per scene unit.
+    pub density: Option<f32>,
+}
+
+/// Fog modes.
+#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub enum FogMode {
+    /// Rises linearly from `start` to `end`.
+    Linear,
+    /// `1 - exp(-density * distance)`.
+    Exponential,
+}
+
+/// `[textures.NAME]`.
+#[derive(Debug, Deserialize)]
+#[serde(tag = "type", rename_all = "lowercase", deny_unknown_fields)]
+pub enum TextureDef {
+    /// One colour.
+    Solid {
+        /// The colour.
+        color: ColorDef,
+    },
+    /// An image file.
+    Image {
+        /// Path, relative to the scene file's folder.
+        file: String,
+        /// How to decode its values.
+        #[serde(default)]
+        color_space: ColorSpaceDef,
+        /// Placement.
+        #[serde(default)]
+        mapping: MappingDef,
+    },
+    /// A checkerboard.
+    Checker {
+        /// Colour where the cell index sum is even.
+        #[serde(default = "white")]
+        even: ColorDef,
+        /// Colour where it is odd.
+        #[serde(default = "black")]
+        odd: ColorDef,
+        /// Cell side in texture units.
+        #[serde(default = "one")]
+        size: f32,
+        /// Placement.
+        #[serde(default)]
+        mapping: MappingDef,
+    },
+    /// Stripes across u.
+    Stripes {
+        /// Colour of even bands.
+        #[serde(default = "white")]
+        a: ColorDef,
+        /// Colour of odd bands.
+        #[serde(default = "black")]
+        b: ColorDef,
+        /// Band width in texture units.
+        #[serde(default = "one")]
+        width: f32,
+        /// Placement.
+        #[serde(default)]
+        mapping: MappingDef,
+    },
+}
+
+/// Colour space of image files.
+#[derive(Clone, Copy, Debug, Default, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub enum ColorSpaceDef {
+    /// sRGB-encoded.
+    #[default]
+    Srgb,
+    /// Linear values.
+    Linear,
+}
+
+/// `mapping = { type = "...", ... }`.
+#[derive(Debug, Default, Deserialize)]
+#[serde(tag = "type", rename_all = "lowercase", deny_unknown_fields)]
+pub enum MappingDef {
+    /// The shape's own uv.
+    #[default]
+    Uv,
+    /// Equirectangular around a centre.
+    Spherical {
+        /// Centre in object space (default: the object's centre).
+        center: Option<V3>,
+        /// Rotation of the texture, degrees about x, y, z.
+        #[serde(default)]
+        rotate: V3,
+    },
+    /// Around an axis.
+    Cylindrical {
+        /// A point on the axis (default: the object's centre).
+        center: Option<V3>,
+        /// Axis direction.
+        #[serde(default = "y_axis")]
+        axis: V3,
+        /// Length along the axis one image spans.
+        #[serde(default = "one")]
+        height: f32,
+    },
+    /// Onto a plane.
+    Planar {
+        /// Where uv is (0, 0).
+        #[serde(default)]
+        origin: V3,
+        /// u axis.
+        #[serde(default = "x_axis")]
+        u: V3,
+        /// v axis.
+        #[serde(default = "z_axis")]
+        v: V3,
+    },
+}
+
+/// `[materials.NAME]`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MaterialDef {
+    /// Surface colour (or use `texture`).
+    pub color: Option<ColorDef>,
+    /// Name of a texture giving the surface colour.
+    pub texture: Option<String>,
+    /// Ambient coefficient.
+    #[serde(default = "one")]
+    pub ambient: f32,
+    /// Diffuse coefficient.
+    #[serde(default = "default_diffuse")]
+    pub diffuse: f32,
+    /// Specular colour.
+    #[serde(default = "black")]
+    pub specular: ColorDef,
+    /// Phong exponent.
+    #[serde(default = "default_shininess")]
+    pub shininess: f32,
+    /// Mirror weight.
+    #[serde(default)]
+    pub reflectivity: f32,
+    /// Transmitted fraction.
+    #[serde(default)]
+    pub transparency: f32,
+    /// Index of refraction.
+    #[serde(default = "default_ior")]
+    pub ior: f32,
+    /// Beer-Lambert coefficient per unit length.
+    #[serde(default = "black")]
+    pub absorption: ColorDef,
+}
+
+/// `[[lights]]`.
+#[derive(Debug, Deserialize)]
+#[serde(tag = "type", rename_all = "lowercase", deny_unknown_fields)]
+pub enum LightDef {
+    /// A point light.
+    Point {
+        /// Position.
+        position: V3,
+        /// Colour.
+        #[serde(default = "white")]
+        color: ColorDef,
+        /// Multiplier.
+        #[serde(default = "one")]
+        intensity: f32,
+    },
+    /// A directional light.
+    Directional {
+        /// Direction the light travels.
+        direction: V3,
+        /// Colour.
+        #[serde(default = "white")]
+        color: ColorDef,
+        /// Multiplier.
+        #[serde(default = "one")]
+        intensity: f32,
+    },
+    /// A spot light.
+    Spot {
+        /// Position.
+        position: V3,
+        /// Point the cone is aimed at (or give `direction`).
+        look_at: Option<V3>,
+        /// Direction of the cone's axis (or give `look_at`).
+        direction: Option<V3>,
+        /// Colour.
+        #[serde(default = "white")]
+        color: ColorDef,
+        /// Multiplier.
+        #[serde(default = "one")]
+        intensity: f32,
+        /// Half-angle of the cone, degrees.
+        #[serde(default = "default_spot_angle")]
+        angle: f32,
+        /// Width of the soft edge inside the cone, degrees.
+        #[serde(default = "default_soft_edge")]
+        soft_edge: f32,
+    },
+}
+
+/// `transform = { ... }`: scale, then rotate (x, y, z, degrees), then translate.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TransformDef {
+    /// Scale: a number or `[x, y, z]`.
+    #[serde(default = "unit_scale")]
+    pub scale: ScaleDef,
+    /// Degrees about x, then y, then z.
+    #[serde(default)]
+    pub rotate: V3,
+    /// Offset.
+    #[serde(default)]
+    pub translate: V3,
+}
+
+macro_rules! object_defs {
+    ($( $(#[$doc:meta])* $variant:ident ($name:ident) { $( $(#[$fdoc:meta])* $field:ident : $ty:ty $(= $default:literal)? ),* $(,)? } )*) => {
+        /// `[[objects]]`: a shape with a material and an optional transform.
+        #[derive(Debug, Deserialize)]
+        #[serde(tag = "type", rename_all = "lowercase")]
+        pub enum ObjectDef {
+            $( $(#[$doc])* $variant($name), )*
+        }
+
+        $(
+            #[derive(Debug, Deserialize)]
+            #[serde(deny_unknown_fields)]
+            $(#[$doc])*
+            pub struct $name {
+                /// Name shown in messages (default: the type and index).
+                pub name: Option<String>,
+                /// Name of the material.
+                pub material: String,
+                /// Placement.
+                pub transform: Option<TransformDef>,
+                $( $(#[$fdoc])* $(#[serde(default = $default)])? pub $field: $ty, )*
+            }
+        )*
+
+        impl ObjectDef {
+            /// The fields every object has: name, material, transform.
+            pub fn common(&self) -> (&Option<String>, &String, &Option<TransformDef>) {
+                match self {
+                    $( ObjectDef::$variant(o) => (&o.name, &o.material, &o.transform), )*
+                }
+            }
+        }
+    };
+}
+
+object_defs! {
+    /// A sphere.
+    Sphere(SphereDef) {
+        /// Centre.
+        center: V3 = "origin",
+        /// Radius.
+        radius: f32,
+    }
+    /// An infinite plane.
+    Plane(PlaneDef) {
+        /// A point on it.
+        point: V3 = "origin",
+        /// Its normal.
+        normal: V3 = "y_axis",
+    }
+    /// A parallelogram.
+    #[serde(rename = "rectangle")]
+    Rectangle(RectangleDef) {
+        /// A corner.
+        corner: V3,
+        /// First edge from the corner.
+        edge_u: V3,
+        /// Second edge from the corner.
+        edge_v: V3,
+    }
+    /// A box.
+    #[serde(rename = "box")]
+    Cuboid(BoxDef) {
+        /// Smallest corner.
+        min: V3,
+        /// Largest corner.
+        max: V3,
+    }
+    /// A cylinder.
+    Cylinder(CylinderDef) {
+        /// Centre of the bottom.
+        base: V3 = "origin",
+        /// Axis direction.
+        axis: V3 = "y_axis",
+        /// Radius.
+        radius: f32,
+        /// Length.
+        height: f32,
+        /// Closed ends.
+        capped: bool = "yes",
+    }
+    /// A cone.
+    Cone(ConeDef) {
+        /// Centre of the base.
+        base: V3 = "origin",
+        /// Axis direction, toward the apex.
+        axis: V3 = "y_axis",
+        /// Base radius.
+        radius: f32,
+        /// Base to apex.
+        height: f32,
+        /// Closed base.
+        capped: bool = "yes",
+    }
+    /// A disk.
+    Disk(DiskDef) {
+        /// Centre.
+        center: V3 = "origin",
+        /// Normal.
+        normal: V3 = "y_axis",
+        /// Radius.
+        radius: f32,
+    }
+    /// A triangle.
+    Triangle(TriangleDef) {
+        /// The three corners.
+        vertices: [V3; 3],
+    }
+}
+
+/// A colour: `[r, g, b]` in linear RGB, or one number for grey.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ColorDef(pub [f32; 3]);
+
+impl<'de> Deserialize<'de> for ColorDef {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        struct V;
+        impl<'de> Visitor<'de> for V {
+            type Value = ColorDef;
+            fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
+                f.write_str("a colour: [r, g, b] or one number for grey")
+            }
+            fn visit_f64<E: de::Error>(self, v: f64) -> Result<ColorDef, E> {
+                Ok(ColorDef([v as f32; 3]))
+            }
+            fn visit_i64<E: de::Error>(self, v: i64) -> Result<ColorDef, E> {
+                Ok(ColorDef([v as f32; 3]))
+            }
+            fn visit_u64<E: de::Error>(self, v: u64) -> Result<ColorDef, E> {
+                Ok(ColorDef([v as f32; 3]))
+            }
+            fn visit_seq<A: SeqAccess<'de>>(self, seq: A) -> Result<ColorDef, A::Error> {
+                three(seq, &self).map(ColorDef)
+            }
+        }
+        d.deserialize_any(V)
+    }
+}
+
+/// A scale: one number for all axes or `[x, y, z]`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ScaleDef(pub [f32; 3]);
+
+impl<'de> Deserialize<'de> for ScaleDef {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        ColorDef::deserialize(d)
+            .map(|c| ScaleDef(c.0))
+            .map_err(|e| {
+                de::Error::custom(e.to_string().replace(
+                    "a colour: [r, g, b] or one number for grey",
+                    "a scale: one number or [x, y, z]",
+                ))
+            })
+    }
+}
+
+fn three<'de, A: SeqAccess<'de>>(mut seq: A, exp: &dyn de::Expected) -> Result<[f32; 3], A::Error> {
+    let mut out = [0.0; 3];
+    for (i, slot) in out.iter_mut().enumerate() {
+        *slot = seq
+            .next_element::<f32>()?
+            .ok_or_else(|| de::Error::invalid_length(i, exp))?;
+    }
+    if seq.next_element::<de::IgnoredAny>()?.is_some() {
+        return Err(de::Error::invalid_length(4, exp));
+    }
+    Ok(out)
+}
+
+fn origin() -> V3 {
+    [0.0; 3]
+}
+fn x_axis() -> V3 {
+    [1.0, 0.0, 0.0]
+}
+fn y_axis() -> V3 {
+    [0.0, 1.0, 0.0]
+}
+fn z_axis() -> V3 {
+    [0.0, 0.0, 1.0]
+}
+fn yes() -> bool {
+    true
+}
+fn one() -> f32 {
+    1.0
+}
+fn white() -> ColorDef {
+    ColorDef([1.0; 3])
+}
+fn black() -> ColorDef {
+    ColorDef([0.0; 3])
+}
+fn grey_half() -> ColorDef {
+    ColorDef([0.5; 3])
+}
+fn unit_scale() -> ScaleDef {
+    ScaleDef([1.0; 3])
+}
+fn default_fov() -> f32 {
+    45.0
+}
+fn default_diffuse() -> f32 {
+    0.8
+}
+fn default_shininess() -> f32 {
+    50.0
+}
+fn default_ior() -> f32 {
+    1.5
+}
+fn default_spot_angle() -> f32 {
+    30.0
+}
+fn default_soft_edge() -> f32 {
+    5.0
+}

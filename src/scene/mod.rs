@@ -1,0 +1,329 @@
+//! The scene: read from a file (`format`), checked and resolved (`build`), then immutable
+//! and shared by every render thread.
+
+mod build;
+mod diag;
+pub mod format;
+
+pub use build::{load, load_str};
+pub use diag::{DocPath, Format, Problem, SceneDiagnostic, SceneError, Seg, did_you_mean};
+
+use crate::accel::Bvh;
+use crate::camera::Camera;
+use crate::film::Filter;
+use crate::geometry::{Shape, ShapeHit};
+use crate::light::Light;
+use crate::material::Material;
+use crate::math::{Aabb, Color, Ray, Transform, Vec3A};
+use crate::texture::{Texture, TexturePoint};
+use std::collections::BTreeMap;
+
+/// Render settings from the scene's `[image]` table (the command line may override them).
+#[derive(Clone, Debug, PartialEq)]
+pub struct RenderSettings {
+    /// Image width in pixels.
+    pub width: u32,
+    /// Image height in pixels.
+    pub height: u32,
+    /// Samples per pixel, a square number.
+    pub spp: u32,
+    /// Longest chain of rays, the camera ray included.
+    pub max_depth: u32,
+    /// Seed of the sample jitter.
+    pub seed: u64,
+    /// Reconstruction filter.
+    pub filter: Filter,
+}
+
+impl RenderSettings {
+    /// Largest image side accepted.
+    pub const MAX_SIDE: u32 = 65_536;
+    /// Most samples per pixel accepted.
+    pub const MAX_SPP: u32 = 65_536;
+    /// Longest ray chain accepted.
+    pub const MAX_DEPTH: u32 = 64;
+
+    /// Checks a sample count: a square number (n x n strata) in range.
+    pub fn check_spp(spp: u32) -> Result<(), (String, Option<String>)> {
+        let n = (spp as f64).sqrt().round() as u32;
+        if spp == 0 || spp > Self::MAX_SPP {
+            Err((
+                format!(
+                    "samples per pixel must be between 1 and {}, not {spp}",
+                    Self::MAX_SPP
+                ),
+                None,
+            ))
+        } else if n * n != spp {
+            let lo = ((spp as f64).sqrt().floor() as u32).max(1);
+            Err((
+                format!("samples per pixel must be a square number (n x n stratified), not {spp}"),
+                Some(format!(
+                    "use {} ({lo} x {lo}) or {} ({} x {})",
+                    lo * lo,
+                    (lo + 1) * (lo + 1),
+                    lo + 1,
+                    lo + 1
+                )),
+            ))
+        } else {
+            Ok(())
+        }
+    }
+
+    /// Checks an image side.
+    pub fn check_side(what: &str, v: u32) -> Result<(), String> {
+        if v == 0 || v > Self::MAX_SIDE {
+            Err(format!(
+                "{what} must be between 1 and {} pixels, not {v}",
+                Self::MAX_SIDE
+            ))
+        } else {
+            Ok(())
+        }
+    }
+}
+
+/// Fog over distance travelled outside solids.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Fog {
+    /// Fog fraction rises linearly from 0 at `start` to 1 at `end`.
+    Linear {
+        /// Colour of full fog.
+        color: Color,
+        /// Distance where it starts.
+        start: f32,
+        /// Distance where it is complete.
+        end: f32,
+    },
+    /// Fog fraction `1 - exp(-density * distance)`.
+    Exponential {
+        /// Colour of full fog.
+        color: Color,
+        /// Per scene unit.
+        density: f32,
+    },
+}
+
+impl Fog {
+    /// Blends `c`, seen from `distance` away, toward the fog colour.
+    #[inline]
+    pub fn apply(&self, c: Color, distance: f32) -> Color {
+        let (fog, f) = match *self {
+            Fog::Linear { color, start, end } => {
+                (color, ((distance - start) / (end - start)).clamp(0.0, 1.0))
+            }
+            Fog::Exponential { color, density } => (color, 1.0 - (-density * distance).exp()),
+        };
+        c.lerp(fog, f)
+    }
+}
+
+/// A shape placed in the scene with its material.
+#[derive(Clone, Debug)]
+pub struct Object {
+    /// Name for messages (given, or type and index).
+    pub name: String,
+    /// The shape, in object space.
+    pub shape: Shape,
+    /// Object to world placement; `None` when object space is world space.
+    pub transform: Option<Transform>,
+    /// Index into `Scene::materials`.
+    pub material: usize,
+    /// Bounds in world space; `None` when unbounded.
+    pub world_bounds: Option<Aabb>,
+    /// Centre of the object-space bounds (the default centre of spherical mappings).
+    pub center: Vec3A,
+}
+
+impl Object {
+    /// Nearest hit of a world ray in `(0, t_max)`.
+    #[inline]
+    pub fn intersect(&self, ray: &Ray, t_max: f32) -> Option<ShapeHit> {
+        match &self.transform {
+            None => self.shape.intersect(ray, t_max),
+            Some(t) => self.shape.intersect(&t.ray_to_object(ray), t_max),
+        }
+    }
+
+    /// True when the world-space point is strictly inside this object's solid.
+    pub fn contains(&self, p: Vec3A) -> bool {
+        let p = self.transform.as_ref().map_or(p, |t| t.point_to_object(p));
+        self.shape.contains(p)
+    }
+}
+
+/// Everything known about the closest hit of a ray.
+#[derive(Clone, Copy, Debug)]
+pub struct Hit {
+    /// Ray parameter.
+    pub t: f32,
+    /// World-space point on the surface.
+    pub point: Vec3A,
+    /// Unit geometric normal, world space, pointing out of the solid (front side).
+    pub normal: Vec3A,
+    /// Index of the object hit.
+    pub object: usize,
+    /// What textures need, in object space.
+    pub tex: TexturePoint,
+}
+
+/// A scene ready to render: immutable, shared by all threads.
+#[derive(Debug)]
+pub struct Scene {
+    /// The camera.
+    pub camera: Camera,
+    /// Image and sampling settings.
+    pub settings: RenderSettings,
+    /// Colour of rays that hit nothing.
+    pub background: Color,
+    /// Global ambient light.
+    pub ambient: Color,
+    /// Optional fog.
+    pub fog: Option<Fog>,
+    /// Shapes.
+    pub objects: Vec<Object>,
+    /// Materials (objects refer to them by index).
+    pub materials: Vec<Material>,
+    /// Textures (materials refer to them by index).
+    pub textures: Vec<Texture>,
+    /// Names of the named textures, by index.
+    pub texture_names: BTreeMap<String, usize>,
+    /// Names of the materials, by index.
+    pub material_names: Vec<String>,
+    /// Light sources.
+    pub lights: Vec<Light>,
+    /// Things that are allowed but probably not meant.
+    pub warnings: Vec<String>,
+    accel: Bvh,
+    /// Per object: whether its material is transparent.
+    transparent: Vec<bool>,
+    /// Indices of the transparent objects (shadow rays look through these).
+    transparent_objects: Vec<usize>,
+    /// Per object: whether its texture reads the shape's own uv.
+    needs_uv: Vec<bool>,
+}
+
+impl Scene {
+    /// Closest hit of a world ray in `(0, t_max)`, with its surface details.
+    #[inline]
+    pub fn closest_hit(&self, ray: &Ray, t_max: f32) -> Option<Hit> {
+        let (i, h) = self.accel.closest_hit(&self.objects, ray, t_max)?;
+        Some(self.hit_details(ray, i, h))
+    }
+
+    /// Closest hit in `(0, t_max)` among the transparent objects only.
+    #[inline]
+    pub fn closest_transparent_hit(&self, ray: &Ray, t_max: f32) -> Option<Hit> {
+        let mut best: Option<(usize, ShapeHit)> = None;
+        for &i in &self.transparent_objects {
+            if let Some(h) = self.objects[i].intersect(ray, best.map_or(t_max, |b| b.1.t)) {
+                best = Some((i, h));
+            }
+        }
+        best.map(|(i, h)| self.hit_details(ray, i, h))
+    }
+
+    fn hit_details(&self, ray: &Ray, i: usize, h: ShapeHit) -> Hit {
+        let o = &self.objects[i];
+        let want_uv = self.needs_uv[i];
+        let (point, normal, tex) = match &o.transform {
+            None => {
+                let s = o.shape.surface(ray.at(h.t), h.part, want_uv);
+                (
+                    s.point,
+                    s.normal,
+                    TexturePoint {
+                        point: s.point,
+                        uv: s.uv,
+                        center: o.center,
+                    },
+                )
+            }
+            Some(t) => {
+                let local = t.ray_to_object(ray);
+                let s = o.shape.surface(local.at(h.t), h.part, want_uv);
+                (
+                    t.point_to_world(s.point),
+                    t.normal_to_world(s.normal),
+                    TexturePoint {
+                        point: s.point,
+                        uv: s.uv,
+                        center: o.center,
+                    },
+                )
+            }
+        };
+        Hit {
+            t: h.t,
+            point,
+            normal,
+            object: i,
+            tex,
+        }
+    }
+
+    /// Whether an opaque object blocks the ray in `(0, t_max)`.
+    #[inline]
+    pub fn opaque_blocked(&self, ray: &Ray, t_max: f32) -> bool {
+        self.accel
+            .any_hit(&self.objects, ray, t_max, |i| !self.transparent[i])
+    }
+
+    /// Whether any object is transparent (shadow rays then look further).
+    pub fn has_transparent(&self) -> bool {
+        !self.transparent_objects.is_empty()
+    }
+
+    /// The material of object `i`.
+    #[inline]
+    pub fn material_of(&self, i: usize) -> &Material {
+        &self.materials[self.objects[i].material]
+    }
+
+    /// A short human summary: counts of objects by type, lights, textures, materials.
+    pub fn summary(&self) -> String {
+        let mut kinds: BTreeMap<&str, usize> = BTreeMap::new();
+        for o in &self.objects {
+            *kinds.entry(o.shape.kind()).or_default() += 1;
+        }
+        let kinds: Vec<String> = kinds.iter().map(|(k, n)| format!("{n} {k}")).collect();
+        let mut lights: BTreeMap<&str, usize> = BTreeMap::new();
+        for l in &self.lights {
+            let k = match l {
+                Light::Point { .. } => "point",
+                Light::Directional { .. } => "directional",
+                Light::Spot { .. } => "spot",
+            };
+            *lights.entry(k).or_default() += 1;
+        }
+        let lights: Vec<String> = lights.iter().map(|(k, n)| format!("{n} {k}")).collect();
+        let s = &self.settings;
+        format!(
+            "image:     {} x {}, {} spp, max depth {}, seed {}\nobjects:   {} ({})\nlights:    {} ({})\nmaterials: {}\ntextures:  {}{}",
+            s.width,
+            s.height,
+            s.spp,
+            s.max_depth,
+            s.seed,
+            self.objects.len(),
+            kinds.join(", "),
+            self.lights.len(),
+            lights.join(", "),
+            self.material_names.len(),
+            self.texture_names.len(),
+            if self.texture_names.is_empty() {
+                String::new()
+            } else {
+                format!(
+                    " ({})",
+                    self.texture_names
+                        .keys()
+                        .cloned()
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                )
+            }
+        )
+    }
+}

@@ -1,0 +1,174 @@
+use crate::math::{Color, Vec2};
+use std::path::Path;
+
+/// How the numbers in an image file relate to light.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ColorSpace {
+    /// sRGB-encoded (photographs, painted textures): decoded to linear on load.
+    Srgb,
+    /// Already linear (data such as normal maps): used as stored.
+    Linear,
+}
+
+/// A decoded image in linear RGB, row 0 at the top.
+#[derive(Clone, Debug)]
+pub struct ImageData {
+    width: u32,
+    height: u32,
+    texels: Vec<[f32; 3]>,
+}
+
+/// Why an image texture could not be loaded.
+#[derive(Debug, thiserror::Error)]
+pub enum ImageLoadError {
+    /// The file could not be opened or read.
+    #[error("cannot read {path}: {source}")]
+    Io {
+        /// The file.
+        path: String,
+        /// The cause.
+        source: std::io::Error,
+    },
+    /// The file could be read but not decoded.
+    #[error("cannot decode image {path}: {source}")]
+    Decode {
+        /// The file.
+        path: String,
+        /// The cause.
+        source: ::image::ImageError,
+    },
+}
+
+impl ImageData {
+    /// Loads a PNG, JPEG or BMP file (the format is read from its content).
+    pub fn load(path: &Path, space: ColorSpace) -> Result<Self, ImageLoadError> {
+        let shown = path.display().to_string();
+        let bytes = std::fs::read(path).map_err(|source| ImageLoadError::Io {
+            path: shown.clone(),
+            source,
+        })?;
+        let img = ::image::load_from_memory(&bytes).map_err(|source| ImageLoadError::Decode {
+            path: shown,
+            source,
+        })?;
+        Ok(Self::from_dynamic(&img, space))
+    }
+
+    /// From a decoded image.
+    pub fn from_dynamic(img: &::image::DynamicImage, space: ColorSpace) -> Self {
+        let (width, height) = (img.width(), img.height());
+        let texels = if img.color().bytes_per_pixel() / img.color().channel_count() == 1 {
+            // 8-bit: a 256-entry table decodes sRGB exactly and fast.
+            let lut: Vec<f32> = (0..256u32)
+                .map(|i| {
+                    let x = i as f32 / 255.0;
+                    match space {
+                        ColorSpace::Srgb => srgb_to_linear(x),
+                        ColorSpace::Linear => x,
+                    }
+                })
+                .collect();
+            img.to_rgb8()
+                .pixels()
+                .map(|p| [lut[p[0] as usize], lut[p[1] as usize], lut[p[2] as usize]])
+                .collect()
+        } else {
+            img.to_rgb32f()
+                .pixels()
+                .map(|p| match space {
+                    ColorSpace::Srgb => p.0.map(srgb_to_linear),
+                    ColorSpace::Linear => p.0,
+                })
+                .collect()
+        };
+        ImageData {
+            width,
+            height,
+            texels,
+        }
+    }
+
+    /// Width in pixels.
+    pub fn width(&self) -> u32 {
+        self.width
+    }
+
+    /// Height in pixels.
+    pub fn height(&self) -> u32 {
+        self.height
+    }
+
+    fn texel(&self, x: i64, y: i64, clamp_v: bool) -> Color {
+        let (w, h) = (self.width as i64, self.height as i64);
+        let x = x.rem_euclid(w);
+        let y = if clamp_v {
+            y.clamp(0, h - 1)
+        } else {
+            y.rem_euclid(h)
+        };
+        Color::from_array(self.texels[(y * w + x) as usize])
+    }
+
+    /// Bilinear lookup at texture coordinates (texel centres at `(i + 0.5) / size`),
+    /// repeating horizontally, and vertically unless `clamp_v`.
+    pub fn sample_bilinear(&self, uv: Vec2, clamp_v: bool) -> Color {
+        if !uv.is_finite() {
+            return Color::ZERO;
+        }
+        let x = uv.x * self.width as f32 - 0.5;
+        let y = uv.y * self.height as f32 - 0.5;
+        let (x0, y0) = (x.floor(), y.floor());
+        let (fx, fy) = (x - x0, y - y0);
+        let (x0, y0) = (x0 as i64, y0 as i64);
+        let top = self
+            .texel(x0, y0, clamp_v)
+            .lerp(self.texel(x0 + 1, y0, clamp_v), fx);
+        let bottom = self
+            .texel(x0, y0 + 1, clamp_v)
+            .lerp(self.texel(x0 + 1, y0 + 1, clamp_v), fx);
+        top.lerp(bottom, fy)
+    }
+}
+
+/// The sRGB transfer function, inverted: encoded value to linear light.
+pub fn srgb_to_linear(x: f32) -> f32 {
+    if x <= 0.04045 {
+        x / 12.92
+    } else {
+        ((x + 0.055) / 1.055).powf(2.4)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn two_by_one(space: ColorSpace) -> ImageData {
+        let mut img = ::image::RgbImage::new(2, 1);
+        img.put_pixel(0, 0, ::image::Rgb([0, 0, 0]));
+        img.put_pixel(1, 0, ::image::Rgb([255, 128, 255]));
+        ImageData::from_dynamic(&::image::DynamicImage::ImageRgb8(img), space)
+    }
+
+    #[test]
+    fn srgb_is_decoded_to_linear() {
+        let img = two_by_one(ColorSpace::Srgb);
+        let c = img.sample_bilinear(Vec2::new(0.75, 0.5), false);
+        assert!((c.x - 1.0).abs() < 1e-6);
+        assert!((c.y - 0.2158605).abs() < 1e-4, "{}", c.y); // sRGB 128 is 21.6 % light
+        let lin = two_by_one(ColorSpace::Linear).sample_bilinear(Vec2::new(0.75, 0.5), false);
+        assert!((lin.y - 128.0 / 255.0).abs() < 1e-6);
+    }
+
+    #[test]
+    fn bilinear_blends_between_texel_centres_and_wraps() {
+        let img = two_by_one(ColorSpace::Linear);
+        let mid = img.sample_bilinear(Vec2::new(0.5, 0.5), false);
+        assert!((mid.x - 0.5).abs() < 1e-6);
+        // At u = 0 the left texel blends with the right one wrapped round.
+        let edge = img.sample_bilinear(Vec2::new(0.0, 0.5), false);
+        assert!((edge.x - 0.5).abs() < 1e-6);
+        let wrapped = img.sample_bilinear(Vec2::new(1.25, 0.5), false);
+        assert!(wrapped.x.abs() < 1e-6);
+    }
+}

@@ -1,0 +1,177 @@
+//! Textures: a pattern (solid colour, image, checker, stripes) read through a mapping that
+//! turns a surface point into texture coordinates (the shape's own uv, spherical,
+//! cylindrical or planar).
+
+mod image;
+mod mapping;
+
+pub use image::{ColorSpace, ImageData};
+pub use mapping::{Mapping, TexturePoint};
+
+use crate::math::{Color, Vec2};
+use std::sync::Arc;
+
+/// What a texture shows, as a function of texture coordinates.
+#[derive(Clone, Debug)]
+pub enum Pattern {
+    /// One colour everywhere.
+    Solid(Color),
+    /// An image, bilinearly filtered, repeated outside `[0, 1]`.
+    Image(Arc<ImageData>),
+    /// Squares of side `size`: `even` where `floor(u / size) + floor(v / size)` is even.
+    Checker {
+        /// Colour of cells with an even index sum (the cell with corner at (0, 0) and
+        /// positive coordinates).
+        even: Color,
+        /// Colour of the other cells.
+        odd: Color,
+        /// Side of a cell, in texture-coordinate units.
+        size: f32,
+    },
+    /// Bands across `u` of width `width`: `a` where `floor(u / width)` is even, else `b`.
+    Stripes {
+        /// Colour of even bands (starting at u = 0).
+        a: Color,
+        /// Colour of odd bands.
+        b: Color,
+        /// Width of a band, in texture-coordinate units.
+        width: f32,
+    },
+}
+
+/// A pattern and the mapping that places it on a surface.
+#[derive(Clone, Debug)]
+pub struct Texture {
+    /// What it shows.
+    pub pattern: Pattern,
+    /// Where it goes.
+    pub mapping: Mapping,
+}
+
+impl Texture {
+    /// A single colour (needs no coordinates).
+    pub fn solid(c: Color) -> Self {
+        Texture {
+            pattern: Pattern::Solid(c),
+            mapping: Mapping::Uv,
+        }
+    }
+
+    /// The linear colour at a surface point.
+    #[inline]
+    pub fn eval(&self, p: &TexturePoint) -> Color {
+        match &self.pattern {
+            Pattern::Solid(c) => *c,
+            Pattern::Image(img) => {
+                let uv = self.mapping.uv(p);
+                img.sample_bilinear(uv, self.mapping.clamps_v())
+            }
+            Pattern::Checker { even, odd, size } => {
+                let uv = self.mapping.uv(p);
+                if checker_parity(uv, *size) == 0 {
+                    *even
+                } else {
+                    *odd
+                }
+            }
+            Pattern::Stripes { a, b, width } => {
+                let u = self.mapping.uv(p).x;
+                if (u / width).floor() as i64 & 1 == 0 {
+                    *a
+                } else {
+                    *b
+                }
+            }
+        }
+    }
+}
+
+/// 0 for cells where `floor(u / size) + floor(v / size)` is even, 1 otherwise. `floor`
+/// (not truncation toward zero) keeps every cell the same size across 0, which was the
+/// seed report's checkerboard bug.
+pub fn checker_parity(uv: Vec2, size: f32) -> u32 {
+    let i = (uv.x / size).floor() as i64 + (uv.y / size).floor() as i64;
+    (i & 1) as u32
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn checker_cells_are_equal_across_zero() {
+        // Walk along u in small steps and measure the width of each run of equal parity:
+        // with floor every run is exactly `size` wide, including the ones touching 0.
+        let size = 3.0;
+        let step = 0.01;
+        let mut runs = vec![];
+        let mut last = checker_parity(Vec2::new(-12.0 + step / 2.0, 0.5), size);
+        let mut start = -12.0f32;
+        let mut x = -12.0 + step / 2.0;
+        while x < 12.0 {
+            let p = checker_parity(Vec2::new(x, 0.5), size);
+            if p != last {
+                runs.push((x - step / 2.0) - start);
+                start = x - step / 2.0;
+                last = p;
+            }
+            x += step;
+        }
+        assert_eq!(runs.len(), 7, "{runs:?}");
+        for w in &runs[1..] {
+            assert!((w - size).abs() < 0.02, "{runs:?}");
+        }
+        // The report's truncating version makes the cell at 0 twice as wide.
+        let report = |x: f32| ((x / size) as i32 % 2).abs();
+        assert_eq!(report(-2.9), report(2.9));
+        assert_ne!(
+            checker_parity(Vec2::new(-2.9, 0.5), size),
+            checker_parity(Vec2::new(2.9, 0.5), size)
+        );
+    }
+
+    #[test]
+    fn seed_checker_rule() {
+        // The cell is white when floor((x - 10) / 3) + floor((z + 20) / 3) is even.
+        let white = Color::ONE;
+        let t = Texture {
+            pattern: Pattern::Checker {
+                even: white,
+                odd: Color::ZERO,
+                size: 3.0,
+            },
+            mapping: Mapping::planar(
+                crate::math::Vec3A::new(10.0, -15.0, -20.0),
+                crate::math::Vec3A::X,
+                crate::math::Vec3A::Z,
+            ),
+        };
+        for (x, z) in [
+            (0.0f32, -50.0f32),
+            (-24.5, -41.0),
+            (11.0, -19.0),
+            (9.5, -100.0),
+        ] {
+            let expected = ((x - 10.0) / 3.0).floor() + ((z + 20.0) / 3.0).floor();
+            let c = t.eval(&TexturePoint::at(crate::math::Vec3A::new(x, -15.0, z)));
+            assert_eq!(c == white, expected.rem_euclid(2.0) == 0.0, "at {x}, {z}");
+        }
+    }
+
+    #[test]
+    fn stripes_alternate_by_width() {
+        let t = Texture {
+            pattern: Pattern::Stripes {
+                a: Color::ONE,
+                b: Color::ZERO,
+                width: 0.5,
+            },
+            mapping: Mapping::Uv,
+        };
+        let at = |u: f32| t.eval(&TexturePoint::with_uv(Vec2::new(u, 0.0)));
+        assert_eq!(at(0.25), Color::ONE);
+        assert_eq!(at(0.75), Color::ZERO);
+        assert_eq!(at(-0.25), Color::ZERO);
+        assert_eq!(at(1.1), Color::ONE);
+    }
+}
