@@ -120,6 +120,8 @@ pub struct PendingOutput {
     tmp: PathBuf,
     file: Option<File>,
     format: OutputFormat,
+    /// Set once the temporary file has been renamed into place.
+    renamed: bool,
 }
 
 impl PendingOutput {
@@ -150,6 +152,7 @@ impl PendingOutput {
             tmp,
             file: Some(file),
             format,
+            renamed: false,
         })
     }
 
@@ -166,13 +169,15 @@ impl PendingOutput {
         file.sync_all().map_err(io)?;
         drop(file);
         std::fs::rename(&self.tmp, &self.path).map_err(io)?;
+        self.renamed = true;
         Ok(())
     }
 }
 
 impl Drop for PendingOutput {
     fn drop(&mut self) {
-        if self.file.is_some() {
+        if !self.renamed {
+            drop(self.file.take());
             let _ = std::fs::remove_file(&self.tmp);
         }
     }

@@ -1,0 +1,26 @@
+//! Integration tests, built as one test binary: the command line, whole renders (golden
+//! images, determinism) and optics through a built scene.
+
+mod cli;
+mod optics;
+mod renders;
+
+use std::path::{Path, PathBuf};
+
+/// The repository root.
+pub fn root() -> &'static Path {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+}
+
+/// A path under the repository root.
+pub fn repo(p: &str) -> PathBuf {
+    root().join(p)
+}
+
+/// A fresh, empty scratch folder for one test.
+pub fn scratch(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("snell-test-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
