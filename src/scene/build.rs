@@ -214,7 +214,14 @@ fn serde_problem(
     let message = message.trim_end().to_string();
     if let Some(field) = between(&message, "unknown field `", "`") {
         let expected = backticked(message.split_once("expected").map_or("", |x| x.1));
-        let mut p = Problem::new(doc.key(field), format!("unknown key `{field}`"));
+        // serde_path_to_error records the unknown key itself for plain structs, not for
+        // tagged ones.
+        let path = if doc.0.last() == Some(&super::diag::Seg::Key(field.to_string())) {
+            doc
+        } else {
+            doc.key(field)
+        };
+        let mut p = Problem::new(path, format!("unknown key `{field}`"));
         p.at_key = true;
         p.help = Some(
             match did_you_mean(field, expected.iter().map(String::as_str)) {
@@ -294,7 +301,10 @@ impl Builder<'_> {
     }
 
     fn positive(&mut self, x: f32, path: &DocPath) -> f32 {
-        let x = self.finite(x, path);
+        if !x.is_finite() {
+            self.finite(x, path);
+            return 1.0;
+        }
         if x <= 0.0 {
             self.error(path.clone(), format!("must be greater than 0, not {x}"));
             return 1.0;
@@ -378,7 +388,8 @@ impl Builder<'_> {
                         "a material takes `color` or `texture`, not both",
                         "remove one of them",
                     );
-                    0
+                    textures.push(Texture::solid(Color::ONE));
+                    textures.len() - 1
                 }
                 (None, Some(t)) => match texture_names.get(t) {
                     Some(&i) => {
@@ -401,7 +412,8 @@ impl Builder<'_> {
                             format!("no texture named `{t}`"),
                             help,
                         );
-                        0
+                        textures.push(Texture::solid(Color::ONE));
+                        textures.len() - 1
                     }
                 },
                 (c, None) => {

@@ -355,33 +355,40 @@ fn locate_toml(text: &str, path: &DocPath, at_key: bool) -> Option<Range<usize>>
     let mut table: Option<&DeTable> = Some(root.get_ref());
     let mut value: Option<&toml::Spanned<DeValue>> = None;
     let last = path.0.len().saturating_sub(1);
+    // Walk as far as the document goes; a key that is absent (a default) leaves the span of
+    // the table that would hold it.
     for (i, seg) in path.0.iter().enumerate() {
-        match seg {
-            Seg::Key(k) => {
-                let t = table.or_else(|| value.and_then(|v| v.get_ref().as_table()))?;
-                let (key, v) = t
-                    .iter()
-                    .find(|(key, _)| key.get_ref().as_ref() == k.as_str())?;
-                best = Some(if at_key && i == last {
-                    key.span()
-                } else {
-                    v.span()
-                });
-                value = Some(v);
-                table = None;
-            }
-            Seg::Index(n) => {
-                let arr = value?.get_ref().as_array()?;
-                let v = arr.get(*n)?;
-                best = Some(v.span());
-                value = Some(v);
-                table = None;
-            }
+        let found = match seg {
+            Seg::Key(k) => table
+                .or_else(|| value.and_then(|v| v.get_ref().as_table()))
+                .and_then(|t| {
+                    t.iter()
+                        .find(|(key, _)| key.get_ref().as_ref() == k.as_str())
+                })
+                .map(|(key, v)| {
+                    (
+                        if at_key && i == last {
+                            key.span()
+                        } else {
+                            v.span()
+                        },
+                        v,
+                    )
+                }),
+            Seg::Index(n) => value
+                .and_then(|v| v.get_ref().as_array())
+                .and_then(|a| a.get(*n))
+                .map(|v| (v.span(), v)),
+        };
+        let Some((span, v)) = found else {
+            break;
+        };
+        // Tables opened by a header have an empty span; keep the last real one.
+        if !span.is_empty() {
+            best = Some(span);
         }
-        // Arrays of tables have spans covering only their header line; keep the best so far.
-        if best.as_ref().is_some_and(|s| s.is_empty()) {
-            best = None;
-        }
+        value = Some(v);
+        table = None;
     }
     best
 }
@@ -435,7 +442,9 @@ mod json {
         for (i, seg) in path.0.iter().enumerate() {
             match (seg, node) {
                 (Seg::Key(k), Node::Object(entries, _)) => {
-                    let (_, ks, v) = entries.iter().find(|(name, _, _)| name == k)?;
+                    let Some((_, ks, v)) = entries.iter().find(|(name, _, _)| name == k) else {
+                        return best;
+                    };
                     best = Some(if at_key && i == last {
                         ks.clone()
                     } else {
@@ -444,7 +453,10 @@ mod json {
                     node = v;
                 }
                 (Seg::Index(n), Node::Array(items, _)) => {
-                    node = items.get(*n)?;
+                    let Some(item) = items.get(*n) else {
+                        return best;
+                    };
+                    node = item;
                     best = Some(node.span());
                 }
                 _ => return best,
