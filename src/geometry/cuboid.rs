@@ -62,7 +62,8 @@ impl Cuboid {
         }
     }
 
-    /// Face normal and uv across the face (each from 0 to 1 along the box's extent).
+    /// Face normal and uv across the face, 0 to 1, oriented so an image appears upright on
+    /// each side face seen from outside.
     pub fn surface(&self, p: Vec3A, part: u8) -> Surface {
         let axis = (part / 2) as usize;
         let positive = part % 2 == 1;
@@ -74,13 +75,18 @@ impl Cuboid {
         };
         let mut normal = Vec3A::ZERO;
         normal[axis] = if positive { 1.0 } else { -1.0 };
-        let rel = (point - self.min) / (self.max - self.min);
-        let (a, b) = ((axis + 1) % 3, (axis + 2) % 3);
-        Surface {
-            point,
-            normal,
-            uv: Vec2::new(rel[a], rel[b]),
-        }
+        let r = (point - self.min) / (self.max - self.min);
+        // Each face as seen from outside, upright: u to the right, v down (image rows); the
+        // top and bottom faces are seen with -z up.
+        let uv = match part {
+            0 => Vec2::new(r.z, 1.0 - r.y),       // -x
+            1 => Vec2::new(1.0 - r.z, 1.0 - r.y), // +x
+            2 => Vec2::new(r.x, 1.0 - r.z),       // -y
+            3 => Vec2::new(r.x, r.z),             // +y
+            4 => Vec2::new(1.0 - r.x, 1.0 - r.y), // -z
+            _ => Vec2::new(r.x, 1.0 - r.y),       // +z
+        };
+        Surface { point, normal, uv }
     }
 
     /// Bounds.
@@ -113,6 +119,14 @@ mod tests {
         assert_vec_close(s.normal, Vec3A::Y, 0.0);
         let (_, s) = hit(&b, [-30.0, -10.0, -80.0], [1.0, 0.0, 0.0]).unwrap();
         assert_vec_close(s.normal, -Vec3A::X, 0.0);
+    }
+
+    #[test]
+    fn front_face_uv_is_upright() {
+        let b = seed_box();
+        // The +z face's top-left corner, seen from +z, is (min x, max y): uv (0, 0).
+        let (_, s) = hit(&b, [-16.9, -8.1, 0.0], [0.0, 0.0, -1.0]).unwrap();
+        assert!(s.uv.x < 0.05 && s.uv.y < 0.05, "{}", s.uv);
     }
 
     #[test]

@@ -82,7 +82,7 @@ impl Cylinder {
                     radial * self.radius + Vec3A::Z * l.z,
                     radial,
                     if want_uv {
-                        Vec2::new(0.5 + l.y.atan2(l.x) / TAU, 1.0 - l.z / self.height)
+                        Vec2::new(angle_u(l), 1.0 - l.z / self.height)
                     } else {
                         Vec2::ZERO
                     },
@@ -122,6 +122,14 @@ impl Cylinder {
             self.radius,
         ))
     }
+}
+
+/// The angle around the axis as `u` in `[0, 1]`, for a point in a frame built from the axis.
+/// For the default axis (+y) this is the sphere's longitude: `u = 0.5` faces +z, and `u`
+/// grows toward +x, with the seam at -z.
+pub(crate) fn angle_u(l: Vec3A) -> f32 {
+    // Frame::from_axis(+y) has u = +x and v = -z, so world z is -l.y.
+    0.5 + l.x.atan2(-l.y) / TAU
 }
 
 /// Bounds of a disk with unit normal `n`: per axis, the half-extent is `r * sqrt(1 - n_i^2)`.
@@ -203,6 +211,24 @@ mod tests {
         assert!((t - 7.0).abs() < 1e-5);
         assert!(hit(&seed_cylinder(false), [16.0, 0.0, -92.0], [0.0, -1.0, 0.0]).is_none());
         assert!(hit(&seed_cylinder(true), [18.0, 0.0, -92.0], [0.0, -1.0, 0.0]).is_none());
+    }
+
+    #[test]
+    fn side_uv_matches_the_sphere_longitude() {
+        let c = Cylinder::new(Vec3A::ZERO, Vec3A::Y, 1.0, 2.0, true);
+        let u = |p: Vec3A| c.surface(p, SIDE, true).uv;
+        assert!(
+            (u(Vec3A::new(0.0, 1.0, 1.0)).x - 0.5).abs() < 1e-6,
+            "+z is the centre"
+        );
+        assert!(
+            (u(Vec3A::new(1.0, 1.0, 0.0)).x - 0.75).abs() < 1e-6,
+            "+x is to the right"
+        );
+        assert!(
+            (u(Vec3A::new(0.0, 2.0, 1.0)).y).abs() < 1e-6,
+            "v = 0 at the top"
+        );
     }
 
     #[test]

@@ -15,6 +15,7 @@ mod triangle;
 pub use cone::Cone;
 pub use cuboid::Cuboid;
 pub use cylinder::Cylinder;
+pub(crate) use cylinder::angle_u;
 pub use disk::Disk;
 pub use plane::Plane;
 pub use rect::Rect;

@@ -51,13 +51,15 @@ impl Rect {
         )
     }
 
-    /// Normal and uv: `u` from 0 to 1 along `edge_u`, `v` from 0 to 1 along `edge_v`.
+    /// Normal and uv: `u` from 0 to 1 along `edge_u`, `v` from 1 at the corner to 0 at the
+    /// far end of `edge_v`. Seen from the front, with `edge_u` to the right and `edge_v` up,
+    /// an image appears upright with the corner at its bottom-left.
     pub fn surface(&self, p: Vec3A) -> Surface {
         let (a, b) = self.coords(p);
         Surface {
             point: self.corner + a * self.edge_u + b * self.edge_v,
             normal: self.normal,
-            uv: Vec2::new(a, b),
+            uv: Vec2::new(a, 1.0 - b),
         }
     }
 

@@ -73,7 +73,30 @@ fn parse(text: &str, format: Format) -> Result<SceneFile, Problem> {
 /// their positions, so a type error is reported at the whole table. Find the value the
 /// message describes (`invalid type: string "big"`, `invalid length 2`) below it.
 fn refine(text: &str, format: Format, p: Problem) -> Problem {
-    if p.at_key || !p.message.contains("invalid ") {
+    if p.at_key {
+        // An unknown key in a table nested inside a tagged one (an object's `transform`)
+        // comes with the tagged table's path: find the key below it.
+        let Some((parent, super::diag::Seg::Key(field))) = p
+            .path
+            .0
+            .split_last()
+            .map(|(l, r)| (DocPath(r.to_vec()), l.clone()))
+        else {
+            return p;
+        };
+        let below = super::diag::values_below(text, format, &parent);
+        if below.iter().any(|(q, _)| *q == p.path) {
+            return p;
+        }
+        let nested = below
+            .into_iter()
+            .find(|(q, _)| q.0.last() == Some(&super::diag::Seg::Key(field.clone())));
+        return match nested {
+            Some((path, _)) => Problem { path, ..p },
+            None => p,
+        };
+    }
+    if !p.message.contains("invalid ") {
         return p;
     }
     let Some(described) = p.message.split("invalid ").nth(1) else {
@@ -116,10 +139,14 @@ fn refine(text: &str, format: Format, p: Problem) -> Problem {
             false
         }
     };
-    let found = super::diag::values_below(text, format, &p.path)
+    // Only a value the message singles out: with two arrays in the table, "a sequence"
+    // could be either, and the table itself is the honest answer.
+    let mut found = super::diag::values_below(text, format, &p.path)
         .into_iter()
-        .find(|(_, span)| text.get(span.clone()).is_some_and(matches));
-    match found {
+        .filter(|(_, span)| text.get(span.clone()).is_some_and(matches));
+    let first = found.next();
+    let unique = described.starts_with("type: string") || found.next().is_none();
+    match first.filter(|_| unique) {
         Some((path, span)) if path != p.path => {
             let message = p.message.clone();
             Problem {
@@ -312,6 +339,15 @@ impl Builder<'_> {
         x
     }
 
+    fn non_negative(&mut self, x: f32, path: &DocPath) -> f32 {
+        let x = self.finite(x, path);
+        if x < 0.0 {
+            self.error(path.clone(), format!("must be 0 or more, not {x}"));
+            return 0.0;
+        }
+        x
+    }
+
     fn in_range(&mut self, x: f32, lo: f32, hi: f32, path: &DocPath) -> f32 {
         let x = self.finite(x, path);
         if !(lo..=hi).contains(&x) {
@@ -422,10 +458,10 @@ impl Builder<'_> {
                     textures.len() - 1
                 }
             };
-            let ambient = self.in_range(m.ambient, 0.0, f32::MAX, &path.key("ambient"));
-            let diffuse = self.in_range(m.diffuse, 0.0, f32::MAX, &path.key("diffuse"));
+            let ambient = self.non_negative(m.ambient, &path.key("ambient"));
+            let diffuse = self.non_negative(m.diffuse, &path.key("diffuse"));
             let specular = self.color(m.specular, &path.key("specular"));
-            let shininess = self.in_range(m.shininess, 0.0, f32::MAX, &path.key("shininess"));
+            let shininess = self.non_negative(m.shininess, &path.key("shininess"));
             let reflectivity = self.in_range(m.reflectivity, 0.0, 1.0, &path.key("reflectivity"));
             let transparency = self.in_range(m.transparency, 0.0, 1.0, &path.key("transparency"));
             let ior = self.positive(m.ior, &path.key("ior"));
@@ -613,7 +649,7 @@ impl Builder<'_> {
         let color = self.color(d.color, &path.key("color"));
         match d.mode {
             FogMode::Linear => {
-                let start = self.in_range(d.start, 0.0, f32::MAX, &path.key("start"));
+                let start = self.non_negative(d.start, &path.key("start"));
                 let Some(end) = d.end else {
                     self.error_help(
                         path.clone(),
@@ -665,7 +701,12 @@ impl Builder<'_> {
                         "use mode = \"linear\" or remove end",
                     );
                 }
-                Fog::Exponential { color, density }
+                let start = self.non_negative(d.start, &path.key("start"));
+                Fog::Exponential {
+                    color,
+                    start,
+                    density,
+                }
             }
         }
     }
@@ -723,7 +764,7 @@ impl Builder<'_> {
                         self.error_help(
                             path.key("file"),
                             format!("cannot load texture: {e}"),
-                            "paths are relative to the scene file's folder; PNG, JPEG and BMP are supported",
+                            "paths are relative to the scene file's folder; PNG, JPEG, BMP and OpenEXR are supported",
                         );
                         Pattern::Solid(Color::ONE)
                     }
@@ -768,7 +809,7 @@ impl Builder<'_> {
             } => Light::Point {
                 position: self.point(*position, &path.key("position")),
                 color: self.color(*color, &path.key("color"))
-                    * self.in_range(*intensity, 0.0, f32::MAX, &path.key("intensity")),
+                    * self.non_negative(*intensity, &path.key("intensity")),
             },
             LightDef::Directional {
                 direction,
@@ -777,7 +818,7 @@ impl Builder<'_> {
             } => Light::Directional {
                 direction: self.direction(*direction, &path.key("direction")),
                 color: self.color(*color, &path.key("color"))
-                    * self.in_range(*intensity, 0.0, f32::MAX, &path.key("intensity")),
+                    * self.non_negative(*intensity, &path.key("intensity")),
             },
             LightDef::Spot {
                 position,
@@ -830,7 +871,7 @@ impl Builder<'_> {
                     position,
                     direction,
                     color: self.color(*color, &path.key("color"))
-                        * self.in_range(*intensity, 0.0, f32::MAX, &path.key("intensity")),
+                        * self.non_negative(*intensity, &path.key("intensity")),
                     cos_outer: angle.to_radians().cos(),
                     cos_inner: (angle - soft).to_radians().cos(),
                 }

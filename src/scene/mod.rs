@@ -96,10 +96,12 @@ pub enum Fog {
         /// Distance where it is complete.
         end: f32,
     },
-    /// Fog fraction `1 - exp(-density * distance)`.
+    /// Fog fraction `1 - exp(-density * (distance - start))` beyond `start`.
     Exponential {
         /// Colour of full fog.
         color: Color,
+        /// Distance where it starts.
+        start: f32,
         /// Per scene unit.
         density: f32,
     },
@@ -113,7 +115,11 @@ impl Fog {
             Fog::Linear { color, start, end } => {
                 (color, ((distance - start) / (end - start)).clamp(0.0, 1.0))
             }
-            Fog::Exponential { color, density } => (color, 1.0 - (-density * distance).exp()),
+            Fog::Exponential {
+                color,
+                start,
+                density,
+            } => (color, 1.0 - (-density * (distance - start).max(0.0)).exp()),
         };
         c.lerp(fog, f)
     }

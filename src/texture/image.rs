@@ -40,7 +40,7 @@ pub enum ImageLoadError {
 }
 
 impl ImageData {
-    /// Loads a PNG, JPEG or BMP file (the format is read from its content).
+    /// Loads a PNG, JPEG, BMP or OpenEXR file (the format is read from its content).
     pub fn load(path: &Path, space: ColorSpace) -> Result<Self, ImageLoadError> {
         let shown = path.display().to_string();
         let bytes = std::fs::read(path).map_err(|source| ImageLoadError::Io {
@@ -73,11 +73,16 @@ impl ImageData {
                 .map(|p| [lut[p[0] as usize], lut[p[1] as usize], lut[p[2] as usize]])
                 .collect()
         } else {
+            // Floating-point images (EXR) hold linear light whatever the setting says.
+            let float = matches!(
+                img.color(),
+                ::image::ColorType::Rgb32F | ::image::ColorType::Rgba32F
+            );
             img.to_rgb32f()
                 .pixels()
                 .map(|p| match space {
-                    ColorSpace::Srgb => p.0.map(srgb_to_linear),
-                    ColorSpace::Linear => p.0,
+                    ColorSpace::Srgb if !float => p.0.map(srgb_to_linear),
+                    _ => p.0,
                 })
                 .collect()
         };

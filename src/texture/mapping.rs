@@ -1,6 +1,5 @@
 use crate::geometry::equirectangular_uv;
 use crate::math::{Frame, Transform, Vec2, Vec3A};
-use std::f32::consts::TAU;
 
 /// What a mapping may need to know about a surface point, all in the object's own space.
 #[derive(Clone, Copy, Debug)]
@@ -48,8 +47,9 @@ pub enum Mapping {
         /// Rotation of the texture (object to texture space is its inverse).
         rotation: Option<Transform>,
     },
-    /// Around an axis: `u` is the angle (0 to 1, starting at the frame's `u` direction),
-    /// `v` is the distance along the axis divided by `height`, 0 at the top.
+    /// Around an axis: `u` is the angle (0 to 1; for the +y axis 0.5 faces +z and `u` grows
+    /// toward +x, as the sphere's longitude), `v` is the distance along the axis divided by
+    /// `height`, 0.5 at the centre and growing downward.
     Cylindrical {
         /// A point on the axis; `None` means the object's centre.
         center: Option<Vec3A>,
@@ -97,7 +97,7 @@ impl Mapping {
                 height,
             } => {
                 let l = frame.to_local(p.point - center.unwrap_or(p.center));
-                Vec2::new(0.5 + l.y.atan2(l.x) / TAU, 0.5 - l.z / height)
+                Vec2::new(crate::geometry::angle_u(l), 0.5 - l.z / height)
             }
             Mapping::Planar {
                 origin,
