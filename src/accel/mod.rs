@@ -8,8 +8,9 @@ use crate::scene::Object;
 
 /// Most objects in one leaf.
 const LEAF_SIZE: usize = 2;
-/// Deepest tree traversed (a SAH tree over n objects is far shallower for any n here).
-const MAX_DEPTH: usize = 32;
+/// Deepest tree built: below this depth a node becomes a leaf whatever its size, so the
+/// traversal stack (one entry per level) can never overflow.
+const MAX_DEPTH: usize = 24;
 
 #[derive(Clone, Copy, Debug)]
 struct Node {
@@ -40,16 +41,11 @@ impl BoxRay {
     fn new(ray: &Ray) -> Self {
         // 1/0 = inf would give 0 * inf = NaN for an origin on a slab plane; the largest
         // finite value gives 0 there instead, and still overflows to inf elsewhere.
-        let inv = (Vec3A::ONE / ray.dir).to_array().map(|v| {
-            if v.is_infinite() {
-                f32::MAX.copysign(v)
-            } else {
-                v
-            }
-        });
+        let inv = Vec3A::ONE / ray.dir;
+        let finite = Vec3A::splat(f32::MAX).copysign(inv);
         BoxRay {
             origin: ray.origin,
-            inv_dir: Vec3A::from_array(inv),
+            inv_dir: Vec3A::select(inv.abs().cmple(Vec3A::splat(f32::MAX)), inv, finite),
         }
     }
 
@@ -58,8 +54,10 @@ impl BoxRay {
     fn entry(&self, b: &Aabb, t_max: f32) -> Option<f32> {
         let t0 = (b.min - self.origin) * self.inv_dir;
         let t1 = (b.max - self.origin) * self.inv_dir;
-        let near = t0.min(t1).max_element().max(0.0);
-        let far = t0.max(t1).min_element().min(t_max);
+        // `inv_dir` is finite, so no NaN can arise and plain comparisons (cheaper than
+        // f32::max, which handles NaN) are exact here.
+        let near = t0.min(t1).max(Vec3A::ZERO).max_element();
+        let far = t0.max(t1).min(Vec3A::splat(t_max)).min_element();
         // A few ulps of slack so rays grazing an edge are not culled by rounding.
         (near <= far * (1.0 + 4.0 * f32::EPSILON)).then_some(near)
     }
@@ -82,12 +80,12 @@ impl Bvh {
                 first: 0,
                 count: 0,
             });
-            bvh.split(0, &mut items);
+            bvh.split(0, &mut items, 1);
         }
         bvh
     }
 
-    fn split(&mut self, node: usize, items: &mut [(u32, Aabb)]) {
+    fn split(&mut self, node: usize, items: &mut [(u32, Aabb)], depth: usize) {
         let bounds = items.iter().fold(Aabb::EMPTY, |b, (_, ib)| b.union(ib));
         self.nodes[node].bounds = bounds;
         let make_leaf = |bvh: &mut Bvh, items: &[(u32, Aabb)]| {
@@ -95,7 +93,7 @@ impl Bvh {
             bvh.nodes[node].count = items.len() as u32;
             bvh.order.extend(items.iter().map(|(i, _)| *i));
         };
-        if items.len() <= LEAF_SIZE {
+        if items.len() <= LEAF_SIZE || depth >= MAX_DEPTH {
             return make_leaf(self, items);
         }
         // Surface area heuristic over every split of the centroid order on each axis.
@@ -129,8 +127,8 @@ impl Bvh {
         }
         self.nodes[node].first = first_child as u32;
         let (l, r) = items.split_at_mut(at);
-        self.split(first_child, l);
-        self.split(first_child + 1, r);
+        self.split(first_child, l, depth + 1);
+        self.split(first_child + 1, r, depth + 1);
     }
 
     /// Calls `visit(object, t_max)` for every object whose bounds the ray may meet before
@@ -173,10 +171,9 @@ impl Bvh {
                 match (ta, tb) {
                     (Some(x), Some(y)) => {
                         let (near, far) = if x <= y { (a, b) } else { (b, a) };
-                        if top < MAX_DEPTH {
-                            stack[top] = far as u32;
-                            top += 1;
-                        }
+                        // At most one entry per level below the root: no overflow.
+                        stack[top] = far as u32;
+                        top += 1;
                         node = &self.nodes[near];
                         continue;
                     }

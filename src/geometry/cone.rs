@@ -110,8 +110,9 @@ impl Cone {
             (
                 Vec3A::new(l.x, l.y, 0.0),
                 -Vec3A::Z,
+                // The base seen from below, as the cylinder's bottom cap.
                 Vec2::new(
-                    0.5 + l.x / (2.0 * self.radius),
+                    0.5 - l.x / (2.0 * self.radius),
                     0.5 - l.y / (2.0 * self.radius),
                 ),
             )

@@ -77,7 +77,7 @@ impl Cuboid {
         normal[axis] = if positive { 1.0 } else { -1.0 };
         let r = (point - self.min) / (self.max - self.min);
         // Each face as seen from outside, upright: u to the right, v down (image rows); the
-        // top and bottom faces are seen with -z up.
+        // top face is seen from above with -z up, the bottom from below with +z up.
         let uv = match part {
             0 => Vec2::new(r.z, 1.0 - r.y),       // -x
             1 => Vec2::new(1.0 - r.z, 1.0 - r.y), // +x

@@ -94,8 +94,9 @@ impl Cylinder {
                 (
                     Vec3A::new(l.x, l.y, z),
                     if top { Vec3A::Z } else { -Vec3A::Z },
+                    // Seen from outside each cap: the bottom is seen from below, mirrored.
                     Vec2::new(
-                        0.5 + l.x / (2.0 * self.radius),
+                        0.5 + (if top { l.x } else { -l.x }) / (2.0 * self.radius),
                         0.5 - l.y / (2.0 * self.radius),
                     ),
                 )
