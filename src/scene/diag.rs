@@ -596,7 +596,9 @@ fn edit_distance(a: &str, b: &str) -> usize {
     for i in 1..=a.len() {
         for j in 1..=b.len() {
             let cost = usize::from(a[i - 1] != b[j - 1]);
-            d[i][j] = (d[i - 1][j] + 1).min(d[i][j - 1] + 1).min(d[i - 1][j - 1] + cost);
+            d[i][j] = (d[i - 1][j] + 1)
+                .min(d[i][j - 1] + 1)
+                .min(d[i - 1][j - 1] + cost);
             if i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1] {
                 d[i][j] = d[i][j].min(d[i - 2][j - 2] + 1);
             }
@@ -614,7 +616,10 @@ mod tests {
         assert_eq!(did_you_mean("radus", ["center", "radius"]), Some("radius"));
         assert_eq!(did_you_mean("colour", ["color", "texture"]), Some("color"));
         assert_eq!(did_you_mean("zzzzzz", ["center", "radius"]), None);
-        assert_eq!(did_you_mean("scael", ["scale", "rotate", "translate"]), Some("scale"));
+        assert_eq!(
+            did_you_mean("scael", ["scale", "rotate", "translate"]),
+            Some("scale")
+        );
     }
 
     #[test]
