@@ -5,6 +5,7 @@
 use crate::geometry::ShapeHit;
 use crate::math::{Aabb, Ray, Vec3A};
 use crate::scene::Object;
+use glam::Vec4;
 
 /// Most objects in one leaf.
 const LEAF_SIZE: usize = 2;
@@ -12,8 +13,9 @@ const LEAF_SIZE: usize = 2;
 /// traversal stack (one entry per level) can never overflow.
 const MAX_DEPTH: usize = 24;
 
+/// A node of the binary tree the builder makes, before it is collapsed to four-wide nodes.
 #[derive(Clone, Copy, Debug)]
-struct Node {
+struct BinaryNode {
     bounds: Aabb,
     /// Leaf: first index into `order`; inner: index of the first child (the second follows).
     first: u32,
@@ -21,17 +23,37 @@ struct Node {
     count: u32,
 }
 
+/// Marks a child reference as a leaf (index into `leaves`).
+const LEAF: u32 = 1 << 31;
+/// An unused lane of a four-wide node.
+const NO_CHILD: u32 = u32::MAX;
+/// Room on the traversal stack: each level pushes at most three more entries than it pops.
+const STACK: usize = 3 * MAX_DEPTH + 1;
+
+/// Four children's boxes side by side (structure of arrays), tested against a ray at once.
+#[derive(Clone, Copy, Debug)]
+struct Node4 {
+    min: [Vec4; 3],
+    max: [Vec4; 3],
+    /// Per lane: an inner node index, `LEAF | leaf index`, or `NO_CHILD`.
+    child: [u32; 4],
+}
+
 /// The objects of a scene, arranged for fast ray queries.
 #[derive(Clone, Debug, Default)]
 pub struct Bvh {
-    nodes: Vec<Node>,
+    nodes: Vec<Node4>,
+    /// `(first, count)` ranges of `order`.
+    leaves: Vec<(u32, u32)>,
     /// Object indices in leaf order.
     order: Vec<u32>,
     /// Objects with no bounds.
     unbounded: Vec<u32>,
+    /// The root's child reference and bounds, when any object is bounded.
+    root: Option<(u32, Aabb)>,
 }
 
-/// A ray with what the box test needs precomputed.
+/// A ray with what the box tests need precomputed.
 struct BoxRay {
     origin: Vec3A,
     inv_dir: Vec3A,
@@ -49,22 +71,39 @@ impl BoxRay {
         }
     }
 
-    /// Where the ray enters the box, if it meets it at some `t` in `[0, t_max]`.
+    /// Does the ray meet the box at some `t` in `[0, t_max]`?
     #[inline(always)]
-    fn entry(&self, b: &Aabb, t_max: f32) -> Option<f32> {
+    fn hits(&self, b: &Aabb, t_max: f32) -> bool {
         let t0 = (b.min - self.origin) * self.inv_dir;
         let t1 = (b.max - self.origin) * self.inv_dir;
-        // `inv_dir` is finite, so no NaN can arise and plain comparisons (cheaper than
-        // f32::max, which handles NaN) are exact here.
+        // `inv_dir` is finite, so no NaN can arise and SIMD min/max are exact here.
         let near = t0.min(t1).max(Vec3A::ZERO).max_element();
         let far = t0.max(t1).min(Vec3A::splat(t_max)).min_element();
         // A few ulps of slack so rays grazing an edge are not culled by rounding.
-        (near <= far * (1.0 + 4.0 * f32::EPSILON)).then_some(near)
+        near <= far * (1.0 + 4.0 * f32::EPSILON)
+    }
+
+    /// Entry distances into the four boxes of `n`, and a bit per lane whose box the ray
+    /// meets in `[0, t_max]`.
+    #[inline(always)]
+    fn hits4(&self, n: &Node4, t_max: f32) -> (Vec4, u32) {
+        let mut near = Vec4::ZERO;
+        let mut far = Vec4::splat(t_max);
+        for axis in 0..3 {
+            let o = Vec4::splat(self.origin[axis]);
+            let inv = Vec4::splat(self.inv_dir[axis]);
+            let t0 = (n.min[axis] - o) * inv;
+            let t1 = (n.max[axis] - o) * inv;
+            near = near.max(t0.min(t1));
+            far = far.min(t0.max(t1));
+        }
+        (near, near.cmple(far * (1.0 + 4.0 * f32::EPSILON)).bitmask())
     }
 }
 
 impl Bvh {
-    /// Builds the hierarchy over the objects' world bounds.
+    /// Builds the hierarchy over the objects' world bounds: a binary tree by the surface area
+    /// heuristic, collapsed to four children per node so one SIMD test covers four boxes.
     pub fn build(objects: &[Object]) -> Self {
         let mut bvh = Bvh::default();
         let mut items: Vec<(u32, Aabb)> = vec![];
@@ -75,60 +114,56 @@ impl Bvh {
             }
         }
         if !items.is_empty() {
-            bvh.nodes.push(Node {
+            let mut binary = vec![BinaryNode {
                 bounds: Aabb::EMPTY,
                 first: 0,
                 count: 0,
-            });
-            bvh.split(0, &mut items, 1);
+            }];
+            split(&mut binary, &mut bvh.order, 0, &mut items, 1);
+            let root = bvh.collapse(&binary, 0);
+            bvh.root = Some((root, binary[0].bounds));
         }
         bvh
     }
 
-    fn split(&mut self, node: usize, items: &mut [(u32, Aabb)], depth: usize) {
-        let bounds = items.iter().fold(Aabb::EMPTY, |b, (_, ib)| b.union(ib));
-        self.nodes[node].bounds = bounds;
-        let make_leaf = |bvh: &mut Bvh, items: &[(u32, Aabb)]| {
-            bvh.nodes[node].first = bvh.order.len() as u32;
-            bvh.nodes[node].count = items.len() as u32;
-            bvh.order.extend(items.iter().map(|(i, _)| *i));
-        };
-        if items.len() <= LEAF_SIZE || depth >= MAX_DEPTH {
-            return make_leaf(self, items);
+    /// Turns binary node `b` (and its subtree) into four-wide nodes; returns its reference.
+    fn collapse(&mut self, binary: &[BinaryNode], b: usize) -> u32 {
+        let node = &binary[b];
+        if node.count > 0 {
+            self.leaves.push((node.first, node.count));
+            return LEAF | (self.leaves.len() - 1) as u32;
         }
-        // Surface area heuristic over every split of the centroid order on each axis.
-        let mut best = (f32::INFINITY, 0usize, 0usize);
-        for axis in 0..3 {
-            items.sort_by(|a, b| a.1.center()[axis].total_cmp(&b.1.center()[axis]));
-            let mut right_areas = vec![0.0f32; items.len()];
-            let mut acc = Aabb::EMPTY;
-            for k in (1..items.len()).rev() {
-                acc = acc.union(&items[k].1);
-                right_areas[k] = area(&acc);
+        // Open the largest inner child until there are four.
+        let mut kids = vec![node.first as usize, node.first as usize + 1];
+        while kids.len() < 4 {
+            let widest = kids
+                .iter()
+                .enumerate()
+                .filter(|(_, k)| binary[**k].count == 0)
+                .max_by(|a, b| area(&binary[*a.1].bounds).total_cmp(&area(&binary[*b.1].bounds)));
+            let Some((pos, &k)) = widest else {
+                break;
+            };
+            kids.swap_remove(pos);
+            kids.push(binary[k].first as usize);
+            kids.push(binary[k].first as usize + 1);
+        }
+        let index = self.nodes.len();
+        self.nodes.push(Node4 {
+            min: [Vec4::splat(f32::INFINITY); 3],
+            max: [Vec4::splat(f32::NEG_INFINITY); 3],
+            child: [NO_CHILD; 4],
+        });
+        for (lane, &k) in kids.iter().enumerate() {
+            let child = self.collapse(binary, k);
+            let n = &mut self.nodes[index];
+            for axis in 0..3 {
+                n.min[axis][lane] = binary[k].bounds.min[axis];
+                n.max[axis][lane] = binary[k].bounds.max[axis];
             }
-            let mut left = Aabb::EMPTY;
-            for k in 1..items.len() {
-                left = left.union(&items[k - 1].1);
-                let cost = area(&left) * k as f32 + right_areas[k] * (items.len() - k) as f32;
-                if cost < best.0 {
-                    best = (cost, axis, k);
-                }
-            }
+            n.child[lane] = child;
         }
-        let (_, axis, at) = best;
-        items.sort_by(|a, b| a.1.center()[axis].total_cmp(&b.1.center()[axis]));
-        let first_child = self.nodes.len();
-        for _ in 0..2 {
-            self.nodes.push(Node {
-                bounds: Aabb::EMPTY,
-                first: 0,
-                count: 0,
-            });
-        }
-        self.nodes[node].first = first_child as u32;
-        let (l, r) = items.split_at_mut(at);
-        self.split(first_child, l, depth + 1);
-        self.split(first_child + 1, r, depth + 1);
+        index as u32
     }
 
     /// Calls `visit(object, t_max)` for every object whose bounds the ray may meet before
@@ -146,58 +181,45 @@ impl Bvh {
                 return;
             }
         }
-        let Some(root) = self.nodes.first() else {
+        let Some((root, bounds)) = self.root else {
             return;
         };
         let br = BoxRay::new(ray);
-        if br.entry(&root.bounds, t_max).is_none() {
+        if !br.hits(&bounds, t_max) {
             return;
         }
-        let mut stack = [0u32; MAX_DEPTH];
-        let mut top = 0;
-        let mut node = root;
-        loop {
-            if node.count > 0 {
-                for &o in &self.order[node.first as usize..(node.first + node.count) as usize] {
+        let mut stack = [(0u32, 0.0f32); STACK];
+        stack[0] = (root, 0.0);
+        let mut top = 1;
+        while top > 0 {
+            top -= 1;
+            let (r, near) = stack[top];
+            if near > t_max {
+                continue;
+            }
+            if r & LEAF != 0 {
+                let (first, count) = self.leaves[(r & !LEAF) as usize];
+                for &o in &self.order[first as usize..(first + count) as usize] {
                     if visit(o as usize, &mut t_max).is_err() {
                         return;
                     }
                 }
-            } else {
-                // Test both children here and descend into the nearer, keeping the other.
-                let (a, b) = (node.first as usize, node.first as usize + 1);
-                let ta = br.entry(&self.nodes[a].bounds, t_max);
-                let tb = br.entry(&self.nodes[b].bounds, t_max);
-                match (ta, tb) {
-                    (Some(x), Some(y)) => {
-                        let (near, far) = if x <= y { (a, b) } else { (b, a) };
-                        // At most one entry per level below the root: no overflow.
-                        stack[top] = far as u32;
-                        top += 1;
-                        node = &self.nodes[near];
-                        continue;
-                    }
-                    (Some(_), None) => {
-                        node = &self.nodes[a];
-                        continue;
-                    }
-                    (None, Some(_)) => {
-                        node = &self.nodes[b];
-                        continue;
-                    }
-                    (None, None) => {}
-                }
+                continue;
             }
-            // Pop the next subtree that is still worth visiting.
-            loop {
-                if top == 0 {
-                    return;
-                }
-                top -= 1;
-                let candidate = &self.nodes[stack[top] as usize];
-                if br.entry(&candidate.bounds, t_max).is_some() {
-                    node = candidate;
-                    break;
+            let n = &self.nodes[r as usize];
+            let (nears, mask) = br.hits4(n, t_max);
+            // Push the children hit, farthest first, so the nearest is visited next.
+            let base = top;
+            for lane in 0..4 {
+                if mask & (1 << lane) != 0 && n.child[lane] != NO_CHILD {
+                    let entry = (n.child[lane], nears[lane]);
+                    let mut k = top;
+                    while k > base && stack[k - 1].1 < entry.1 {
+                        stack[k] = stack[k - 1];
+                        k -= 1;
+                    }
+                    stack[k] = entry;
+                    top += 1;
                 }
             }
         }
@@ -239,6 +261,57 @@ impl Bvh {
         });
         found
     }
+}
+
+/// Splits binary node `node` over `items` by the surface area heuristic (every split of the
+/// centroid order on each axis), down to `LEAF_SIZE` objects or `MAX_DEPTH` levels.
+fn split(
+    nodes: &mut Vec<BinaryNode>,
+    order: &mut Vec<u32>,
+    node: usize,
+    items: &mut [(u32, Aabb)],
+    depth: usize,
+) {
+    let bounds = items.iter().fold(Aabb::EMPTY, |b, (_, ib)| b.union(ib));
+    nodes[node].bounds = bounds;
+    if items.len() <= LEAF_SIZE || depth >= MAX_DEPTH {
+        nodes[node].first = order.len() as u32;
+        nodes[node].count = items.len() as u32;
+        order.extend(items.iter().map(|(i, _)| *i));
+        return;
+    }
+    let mut best = (f32::INFINITY, 0usize, 0usize);
+    for axis in 0..3 {
+        items.sort_by(|a, b| a.1.center()[axis].total_cmp(&b.1.center()[axis]));
+        let mut right_areas = vec![0.0f32; items.len()];
+        let mut acc = Aabb::EMPTY;
+        for k in (1..items.len()).rev() {
+            acc = acc.union(&items[k].1);
+            right_areas[k] = area(&acc);
+        }
+        let mut left = Aabb::EMPTY;
+        for k in 1..items.len() {
+            left = left.union(&items[k - 1].1);
+            let cost = area(&left) * k as f32 + right_areas[k] * (items.len() - k) as f32;
+            if cost < best.0 {
+                best = (cost, axis, k);
+            }
+        }
+    }
+    let (_, axis, at) = best;
+    items.sort_by(|a, b| a.1.center()[axis].total_cmp(&b.1.center()[axis]));
+    let first_child = nodes.len();
+    for _ in 0..2 {
+        nodes.push(BinaryNode {
+            bounds: Aabb::EMPTY,
+            first: 0,
+            count: 0,
+        });
+    }
+    nodes[node].first = first_child as u32;
+    let (l, r) = items.split_at_mut(at);
+    split(nodes, order, first_child, l, depth + 1);
+    split(nodes, order, first_child + 1, r, depth + 1);
 }
 
 fn area(b: &Aabb) -> f32 {
