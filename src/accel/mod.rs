@@ -8,7 +8,7 @@ use crate::scene::Object;
 use glam::Vec4;
 
 /// Most objects in one leaf.
-const LEAF_SIZE: usize = 2;
+const LEAF_SIZE: usize = 1;
 /// Deepest tree built: below this depth a node becomes a leaf whatever its size, so the
 /// traversal stack (one entry per level) can never overflow.
 const MAX_DEPTH: usize = 24;
