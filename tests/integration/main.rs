@@ -5,6 +5,7 @@ mod bad;
 mod cli;
 mod optics;
 mod renders;
+mod shading;
 
 use std::path::{Path, PathBuf};
 
