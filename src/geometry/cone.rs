@@ -1,5 +1,5 @@
-use super::cylinder::{BOTTOM, SIDE, disk_bounds};
-use super::{ShapeHit, Surface, in_range, nearer, solve_quadratic};
+use super::cylinder::{BOTTOM, SIDE, cap_hit, cap_uv, disk_bounds};
+use super::{ShapeHit, Surface, in_range, solve_quadratic};
 use crate::math::{Aabb, Frame, Ray, Vec2, Vec3A};
 
 /// A finite cone: a disk of radius `radius` at `base`, narrowing to a point at
@@ -66,12 +66,8 @@ impl Cone {
                 }
             }
         }
-        if self.capped && d.z != 0.0 {
-            let t = -o.z / d.z;
-            let (x, y) = (o.x + t * d.x, o.y + t * d.y);
-            if x * x + y * y <= self.radius * self.radius {
-                best = nearer(best, in_range(t, best.map_or(t_max, |h| h.t), BOTTOM));
-            }
+        if self.capped {
+            best = cap_hit(o, d, 0.0, self.radius, BOTTOM, t_max, best);
         }
         best
     }
@@ -110,11 +106,7 @@ impl Cone {
             (
                 Vec3A::new(l.x, l.y, 0.0),
                 -Vec3A::Z,
-                // The base seen from below, as the cylinder's bottom cap.
-                Vec2::new(
-                    0.5 - l.x / (2.0 * self.radius),
-                    0.5 - l.y / (2.0 * self.radius),
-                ),
+                cap_uv(l, self.radius, false),
             )
         };
         Surface {

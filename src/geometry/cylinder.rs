@@ -58,14 +58,9 @@ impl Cylinder {
                 }
             }
         }
-        if self.capped && d.z != 0.0 {
-            for (z, part) in [(0.0, BOTTOM), (self.height, TOP)] {
-                let t = (z - o.z) / d.z;
-                let (x, y) = (o.x + t * d.x, o.y + t * d.y);
-                if x * x + y * y <= r2 {
-                    best = nearer(best, in_range(t, best.map_or(t_max, |h| h.t), part));
-                }
-            }
+        if self.capped {
+            best = cap_hit(o, d, 0.0, self.radius, BOTTOM, t_max, best);
+            best = cap_hit(o, d, self.height, self.radius, TOP, t_max, best);
         }
         best
     }
@@ -94,11 +89,7 @@ impl Cylinder {
                 (
                     Vec3A::new(l.x, l.y, z),
                     if top { Vec3A::Z } else { -Vec3A::Z },
-                    // Seen from outside each cap: the bottom is seen from below, mirrored.
-                    Vec2::new(
-                        0.5 + (if top { l.x } else { -l.x }) / (2.0 * self.radius),
-                        0.5 - l.y / (2.0 * self.radius),
-                    ),
+                    cap_uv(l, self.radius, top),
                 )
             }
         };
@@ -123,6 +114,37 @@ impl Cylinder {
             self.radius,
         ))
     }
+}
+
+/// The nearer of `best` and a hit on the end disk of radius `r` at height `z` (local
+/// coordinates: the axis is z), within `t_max`.
+#[inline]
+pub(crate) fn cap_hit(
+    o: Vec3A,
+    d: Vec3A,
+    z: f32,
+    r: f32,
+    part: u8,
+    t_max: f32,
+    best: Option<ShapeHit>,
+) -> Option<ShapeHit> {
+    if d.z == 0.0 {
+        return best;
+    }
+    let t = (z - o.z) / d.z;
+    let (x, y) = (o.x + t * d.x, o.y + t * d.y);
+    if x * x + y * y > r * r {
+        return best;
+    }
+    nearer(best, in_range(t, best.map_or(t_max, |h| h.t), part))
+}
+
+/// Planar uv of an end disk, centred at (0.5, 0.5) and spanning the diameter, seen from
+/// outside: the top from above, the bottom from below (mirrored), so images never read
+/// backwards.
+pub(crate) fn cap_uv(l: Vec3A, r: f32, top: bool) -> Vec2 {
+    let x = if top { l.x } else { -l.x };
+    Vec2::new(0.5 + x / (2.0 * r), 0.5 - l.y / (2.0 * r))
 }
 
 /// The angle around the axis as `u` in `[0, 1]`, for a point in a frame built from the axis.
