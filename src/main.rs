@@ -157,6 +157,9 @@ fn render(args: RenderArgs) -> ExitCode {
             return usage_error(&e, None);
         }
     }
+    if let Err(e) = RenderSettings::check_pixels(s.width, s.height) {
+        return usage_error(&e, None);
+    }
     if let Err((e, help)) = RenderSettings::check_spp(s.spp) {
         return usage_error(&e, help.as_deref());
     }

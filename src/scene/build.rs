@@ -572,6 +572,9 @@ impl Builder<'_> {
         if let Err(e) = RenderSettings::check_side("height", d.height) {
             self.error(path.key("height"), e);
         }
+        if let Err(e) = RenderSettings::check_pixels(d.width, d.height) {
+            self.error(path.key("width"), e);
+        }
         if let Err((e, help)) = RenderSettings::check_spp(d.samples) {
             self.problems.push(Problem {
                 help,

@@ -71,6 +71,23 @@ impl RenderSettings {
         }
     }
 
+    /// Most pixels in one image (16384 x 16384): the film alone then takes 4 GiB.
+    pub const MAX_PIXELS: u64 = 1 << 28;
+
+    /// Checks the pixel count, so a huge image is refused instead of exhausting memory.
+    pub fn check_pixels(width: u32, height: u32) -> Result<(), String> {
+        let pixels = width as u64 * height as u64;
+        if pixels > Self::MAX_PIXELS {
+            Err(format!(
+                "{width} x {height} is {pixels} pixels, more than the {} (16384 x 16384) a render may have; it would need {:.1} GiB for the image alone",
+                Self::MAX_PIXELS,
+                pixels as f64 * 32.0 / (1u64 << 30) as f64
+            ))
+        } else {
+            Ok(())
+        }
+    }
+
     /// Checks an image side.
     pub fn check_side(what: &str, v: u32) -> Result<(), String> {
         if v == 0 || v > Self::MAX_SIDE {

@@ -72,6 +72,16 @@ fn bad_command_lines_exit_2() {
         "{}",
         stderr(&o)
     );
+    let o = expect(
+        &["render", &scene, "--width", "60000", "--height", "60000"],
+        &dir,
+        2,
+    );
+    assert!(
+        stderr(&o).contains("more than the 268435456 (16384 x 16384)"),
+        "{}",
+        stderr(&o)
+    );
     let o = expect(&["render", &scene, "--width", "0"], &dir, 2);
     assert!(
         stderr(&o).contains("--width must be between 1 and"),
