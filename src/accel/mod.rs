@@ -11,7 +11,7 @@ use glam::Vec4;
 const LEAF_SIZE: usize = 1;
 /// Deepest tree built: below this depth a node becomes a leaf whatever its size, so the
 /// traversal stack (one entry per level) can never overflow.
-const MAX_DEPTH: usize = 24;
+const MAX_DEPTH: usize = 16;
 
 /// A node of the binary tree the builder makes, before it is collapsed to four-wide nodes.
 #[derive(Clone, Copy, Debug)]
@@ -170,7 +170,7 @@ impl Bvh {
     /// `t_max` (which `visit` lowers as it finds hits), nearer subtrees first. `visit`
     /// returns `Err(())` to stop early.
     #[inline(always)]
-    fn traverse(
+    fn traverse<const ORDERED: bool>(
         &self,
         ray: &Ray,
         mut t_max: f32,
@@ -185,7 +185,8 @@ impl Bvh {
             return;
         };
         let br = BoxRay::new(ray);
-        if !br.hits(&bounds, t_max) {
+        // A root that is a leaf has no four-wide node to test its box.
+        if root & LEAF != 0 && !br.hits(&bounds, t_max) {
             return;
         }
         let mut stack = [(0u32, 0.0f32); STACK];
@@ -214,7 +215,8 @@ impl Bvh {
                 if mask & (1 << lane) != 0 && n.child[lane] != NO_CHILD {
                     let entry = (n.child[lane], nears[lane]);
                     let mut k = top;
-                    while k > base && stack[k - 1].1 < entry.1 {
+                    // Any-hit queries stop at the first hit wherever it is: no sorting.
+                    while ORDERED && k > base && stack[k - 1].1 < entry.1 {
                         stack[k] = stack[k - 1];
                         k -= 1;
                     }
@@ -234,7 +236,7 @@ impl Bvh {
         t_max: f32,
     ) -> Option<(usize, ShapeHit)> {
         let mut best = None;
-        self.traverse(ray, t_max, |i, limit| {
+        self.traverse::<true>(ray, t_max, |i, limit| {
             if let Some(h) = objects[i].intersect(ray, *limit) {
                 *limit = h.t;
                 best = Some((i, h));
@@ -255,7 +257,7 @@ impl Bvh {
         blocks: impl Fn(usize) -> bool,
     ) -> bool {
         let mut found = false;
-        self.traverse(ray, t_max, |i, limit| {
+        self.traverse::<false>(ray, t_max, |i, limit| {
             found = blocks(i) && objects[i].intersect(ray, *limit).is_some();
             if found { Err(()) } else { Ok(()) }
         });
