@@ -164,8 +164,10 @@ fn render(args: RenderArgs) -> ExitCode {
         return usage_error(&e, help.as_deref());
     }
     let out_path = args.output.clone().unwrap_or_else(|| {
-        let stem = args.scene.file_stem().unwrap_or_default();
-        PathBuf::from(stem).with_extension("png")
+        // `cap.day.toml` gives `cap.day.png` (with_extension would cut it to `cap.png`).
+        let mut name = args.scene.file_stem().unwrap_or_default().to_os_string();
+        name.push(".png");
+        PathBuf::from(name)
     });
     let pending = match PendingOutput::create(&out_path) {
         Ok(p) => p,

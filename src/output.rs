@@ -93,8 +93,12 @@ pub fn encode(img: &Image, format: OutputFormat, path: &Path) -> Result<Vec<u8>,
             image::ExtendedColorType::Rgb8,
         ),
         OutputFormat::Exr => {
-            let floats: Vec<f32> = img.pixels.iter().flat_map(|c| c.to_array()).collect();
-            let raw: Vec<u8> = floats.iter().flat_map(|f| f.to_le_bytes()).collect();
+            let raw: Vec<u8> = img
+                .pixels
+                .iter()
+                .flat_map(|c| c.to_array())
+                .flat_map(f32::to_le_bytes)
+                .collect();
             image::codecs::openexr::OpenExrEncoder::new(std::io::Cursor::new(&mut bytes))
                 .write_image(
                     &raw,

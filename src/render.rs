@@ -75,8 +75,8 @@ pub fn render(
     Ok(image)
 }
 
-/// One pixel: `spp = n * n` samples, one jittered in each cell of an n x n grid over the
-/// filter's support, weighted by the filter. One sample per pixel goes through the centre.
+/// One pixel: `spp = n * n` samples, one jittered in each cell of an n x n grid, placed by
+/// the filter's distribution and averaged. One sample per pixel goes through the centre.
 pub fn render_pixel(scene: &Scene, integrator: &dyn Integrator, x: u32, y: u32) -> Color {
     let s = &scene.settings;
     let (cx, cy) = (x as f32 + 0.5, y as f32 + 0.5);
@@ -90,24 +90,22 @@ pub fn render_pixel(scene: &Scene, integrator: &dyn Integrator, x: u32, y: u32) 
     }
     let n = (s.spp as f32).sqrt().round() as u32;
     let mut rng = Rng::new(hash_seed(&[s.seed, x as u64, y as u64]));
-    let r = s.filter.radius;
-    let cell = 2.0 * r / n as f32;
-    let (mut sum, mut weight) = (Color::ZERO, 0.0f32);
+    let (mut sum, mut weight, mut unsigned) = (Color::ZERO, 0.0f32, Color::ZERO);
     for j in 0..n {
         for i in 0..n {
-            let dx = -r + (i as f32 + rng.next_f32()) * cell;
-            let dy = -r + (j as f32 + rng.next_f32()) * cell;
-            let w = s.filter.weight(dx, dy);
-            if w == 0.0 {
-                continue;
-            }
-            sum += sample(cx + dx, cy + dy) * w;
-            weight += w;
+            // Stratified in the filter's own distribution (filter importance sampling).
+            let (dx, sx) = s.filter.sample((i as f32 + rng.next_f32()) / n as f32);
+            let (dy, sy) = s.filter.sample((j as f32 + rng.next_f32()) / n as f32);
+            let c = sample(cx + dx, cy + dy);
+            sum += c * (sx * sy);
+            weight += sx * sy;
+            unsigned += c;
         }
     }
     if weight > 0.0 {
         (sum / weight).max(Color::ZERO)
     } else {
-        sample(cx, cy)
+        // Only possible when most samples fall in Mitchell's negative lobes.
+        unsigned / (n * n) as f32
     }
 }

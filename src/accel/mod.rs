@@ -300,6 +300,19 @@ fn split(
             }
         }
     }
+    if !best.0.is_finite() || best.2 == 0 {
+        // No split has a finite cost (boxes too large for f32 areas): halve by count along
+        // the widest axis, which always makes progress.
+        let extent = bounds.max - bounds.min;
+        let widest = if extent.x >= extent.y && extent.x >= extent.z {
+            0
+        } else if extent.y >= extent.z {
+            1
+        } else {
+            2
+        };
+        best = (0.0, widest, items.len() / 2);
+    }
     let (_, axis, at) = best;
     items.sort_by(|a, b| a.1.center()[axis].total_cmp(&b.1.center()[axis]));
     let first_child = nodes.len();

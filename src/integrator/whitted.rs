@@ -25,6 +25,20 @@ impl Whitted {
     /// `medium` is the absorption coefficient of the solid the ray travels inside, `None`
     /// in open air (where fog applies instead).
     pub fn trace(&self, scene: &Scene, ray: &Ray, depth: u32, medium: Option<Color>) -> Color {
+        self.trace_from(scene, ray, ray.origin, depth, medium)
+    }
+
+    /// As [`Whitted::trace`], for a ray that really leaves from the surface point `from`
+    /// (its origin is offset off the surface): absorption and fog are measured from there, so
+    /// the offset never shortens a path through thin glass.
+    fn trace_from(
+        &self,
+        scene: &Scene,
+        ray: &Ray,
+        from: Vec3A,
+        depth: u32,
+        medium: Option<Color>,
+    ) -> Color {
         let Some(hit) = scene.closest_hit(ray, f32::INFINITY) else {
             return match (medium, scene.fog) {
                 (Some(sigma), _) if sigma != Color::ZERO => Color::ZERO,
@@ -34,8 +48,8 @@ impl Whitted {
         };
         let c = self.shade(scene, ray, &hit, depth, medium);
         match (medium, scene.fog) {
-            (Some(sigma), _) => c * beer_lambert(sigma, hit.t),
-            (None, Some(fog)) => fog.apply(c, hit.t),
+            (Some(sigma), _) => c * beer_lambert(sigma, (hit.point - from).length()),
+            (None, Some(fog)) => fog.apply(c, (hit.point - from).length()),
             (None, None) => c,
         }
     }
@@ -95,19 +109,20 @@ impl Whitted {
                 && let Some(dir) = refract(d, n, eta)
             {
                 let below = offset_ray_origin(hit.point, -n);
+                // Inside a solid there is absorption (maybe none) and never fog.
                 let (inside, filter) = if entering {
-                    let sigma = (m.absorption != Color::ZERO).then_some(m.absorption);
-                    (sigma, base)
+                    (Some(m.absorption), base)
                 } else {
                     (None, Color::ONE)
                 };
-                let transmitted = self.trace(scene, &Ray::new(below, dir), depth + 1, inside);
+                let transmitted =
+                    self.trace_from(scene, &Ray::new(below, dir), hit.point, depth + 1, inside);
                 out += transmitted * filter * (t * (1.0 - fresnel));
             }
         }
         if reflect_weight > 0.0 {
             let r = Ray::new(above, reflect(d, n).normalize());
-            out += self.trace(scene, &r, depth + 1, medium) * reflect_weight;
+            out += self.trace_from(scene, &r, hit.point, depth + 1, medium) * reflect_weight;
         }
         out
     }
@@ -127,23 +142,25 @@ impl Whitted {
         let mut visible = Color::ONE;
         let mut ray = ray;
         let mut remaining = distance;
-        let mut travelled = 0.0;
-        let mut entered_at = 0.0;
+        // Where the ray went into the solid it is in (its start, if it starts inside).
+        let mut entered_at = origin;
         for _ in 0..MAX_SHADOW_CROSSINGS {
             let Some(h) = scene.closest_transparent_hit(&ray, remaining) else {
                 return visible;
             };
             let m = scene.material_of(h.object);
-            travelled += h.t;
             let entering = dir.dot(h.normal) < 0.0;
             let n = if entering { h.normal } else { -h.normal };
-            let eta = if entering { 1.0 / m.ior } else { m.ior };
-            let mut f = Color::splat(m.transparency * (1.0 - fresnel_dielectric(-dir.dot(n), eta)));
+            // A shadow ray goes straight through instead of bending, so its way out is not the
+            // refracted ray's: weigh both crossings as seen from outside (Fresnel is the same
+            // both ways along a real refracted path), which can never be total reflection.
+            let cos = dir.dot(n).abs();
+            let mut f = Color::splat(m.transparency * (1.0 - fresnel_dielectric(cos, 1.0 / m.ior)));
             if entering {
                 f *= scene.textures[m.texture].eval(&h.tex);
-                entered_at = travelled;
+                entered_at = h.point;
             } else {
-                f *= beer_lambert(m.absorption, travelled - entered_at);
+                f *= beer_lambert(m.absorption, (h.point - entered_at).length());
             }
             visible *= f;
             if visible.max_element() < 1e-4 {

@@ -139,13 +139,13 @@ fn refine(text: &str, format: Format, p: Problem) -> Problem {
             false
         }
     };
-    // Only a value the message singles out: with two arrays in the table, "a sequence"
-    // could be either, and the table itself is the honest answer.
+    // Only a value the message singles out: with two arrays (or two equal strings) in the
+    // table, the message could mean either, and the table itself is the honest answer.
     let mut found = super::diag::values_below(text, format, &p.path)
         .into_iter()
         .filter(|(_, span)| text.get(span.clone()).is_some_and(matches));
     let first = found.next();
-    let unique = described.starts_with("type: string") || found.next().is_none();
+    let unique = found.next().is_none();
     match first.filter(|_| unique) {
         Some((path, span)) if path != p.path => {
             let message = p.message.clone();
@@ -303,6 +303,10 @@ fn backticked(s: &str) -> Vec<String> {
         .collect()
 }
 
+/// Largest magnitude of any number in a scene: its square (1e30) still fits in an `f32`, so
+/// lengths, areas and quadratics cannot overflow.
+const MAX_MAGNITUDE: f32 = 1e15;
+
 struct Builder<'a> {
     problems: Vec<Problem>,
     warnings: Vec<String>,
@@ -319,16 +323,23 @@ impl Builder<'_> {
     }
 
     fn finite(&mut self, x: f32, path: &DocPath) -> f32 {
-        if x.is_finite() {
-            x
-        } else {
+        if !x.is_finite() {
             self.error(path.clone(), format!("must be a finite number, not {x}"));
             0.0
+        } else if x.abs() > MAX_MAGNITUDE {
+            self.error_help(
+                path.clone(),
+                format!("{x:e} is too large (at most {MAX_MAGNITUDE:e} in magnitude)"),
+                "squares of larger numbers overflow 32-bit floats; scale the scene down",
+            );
+            0.0
+        } else {
+            x
         }
     }
 
     fn positive(&mut self, x: f32, path: &DocPath) -> f32 {
-        if !x.is_finite() {
+        if !x.is_finite() || x.abs() > MAX_MAGNITUDE {
             self.finite(x, path);
             return 1.0;
         }
@@ -361,11 +372,18 @@ impl Builder<'_> {
     }
 
     fn point(&mut self, v: V3, path: &DocPath) -> Vec3A {
-        if v.iter().all(|x| x.is_finite()) {
-            Vec3A::from_array(v)
-        } else {
+        if !v.iter().all(|x| x.is_finite()) {
             self.error(path.clone(), format!("must be finite numbers, not {v:?}"));
             Vec3A::ZERO
+        } else if v.iter().any(|x| x.abs() > MAX_MAGNITUDE) {
+            self.error_help(
+                path.clone(),
+                format!("{v:?} is too large (each number at most {MAX_MAGNITUDE:e} in magnitude)"),
+                "squares of larger numbers overflow 32-bit floats; scale the scene down",
+            );
+            Vec3A::ZERO
+        } else {
+            Vec3A::from_array(v)
         }
     }
 

@@ -124,6 +124,10 @@ fn render_writes_png_and_exr_and_reports() {
             .any(|v| *v > 0.05 && (v * 255.0).fract() != 0.0),
         "{values:?}"
     );
+    // A scene name with dots keeps them all: cap.day.toml writes cap.day.png.
+    let dotted = write_scene(&dir, "cap.day.toml", GOOD);
+    expect(&["render", &dotted, "-q"], &dir, 0);
+    assert!(dir.join("cap.day.png").exists() && !dir.join("cap.png").exists());
     // No temporary files left behind.
     let leftovers: Vec<_> = std::fs::read_dir(&dir)
         .unwrap()
