@@ -166,6 +166,33 @@ mod tests {
     }
 
     #[test]
+    fn png_jpeg_and_bmp_files_load_with_their_colours() {
+        let dir = std::env::temp_dir().join(format!("snell-image-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let mut img = ::image::RgbImage::new(4, 2);
+        for (x, y, p) in img.enumerate_pixels_mut() {
+            *p = if x < 2 {
+                ::image::Rgb([255, 0, 0])
+            } else {
+                ::image::Rgb([0, 0, 255])
+            };
+            let _ = y;
+        }
+        for name in ["t.png", "t.bmp", "t.jpg"] {
+            let path = dir.join(name);
+            img.save(&path).unwrap();
+            let loaded = ImageData::load(&path, ColorSpace::Srgb).unwrap();
+            assert_eq!((loaded.width(), loaded.height()), (4, 2), "{name}");
+            // Left half red, right half blue (JPEG within its loss).
+            let left = loaded.sample_bilinear(Vec2::new(0.125, 0.25), false);
+            let right = loaded.sample_bilinear(Vec2::new(0.875, 0.75), false);
+            assert!(left.x > 0.8 && left.z < 0.1, "{name}: {left}");
+            assert!(right.z > 0.8 && right.x < 0.1, "{name}: {right}");
+        }
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+
+    #[test]
     fn bilinear_blends_between_texel_centres_and_wraps() {
         let img = two_by_one(ColorSpace::Linear);
         let mid = img.sample_bilinear(Vec2::new(0.5, 0.5), false);

@@ -143,6 +143,18 @@ fn fog_fades_distant_things_to_its_colour() {
         "{half} vs {expected}"
     );
     assert_eq!(far, Color::new(1.0, 0.0, 0.0), "full fog past end");
+    // Exponential: the fog fraction is 1 - exp(-density (distance - start)).
+    let text = format!(
+        "{LIT_FLOOR}[fog]\nmode = \"exponential\"\ncolor = [1, 0, 0]\nstart = 2\ndensity = 0.1\n"
+    );
+    let s = scene(&text);
+    let seen = Whitted.radiance(&s, &Ray::new(Vec3A::new(0.5, 12.0, 0.5), -Vec3A::Y));
+    let f = 1.0 - (-0.1f32 * 10.0).exp();
+    let expected = near * (1.0 - f) + Color::new(f, 0.0, 0.0);
+    assert!(
+        (seen - expected).abs().max_element() < 1e-5,
+        "{seen} vs {expected}"
+    );
 }
 
 #[test]
