@@ -35,6 +35,10 @@ pub struct Filter {
     /// `INVERSE` even steps of probability: turns a uniform number into an offset whose
     /// density follows the filter.
     inverse: [f32; INVERSE],
+    /// Distance from the centre beyond which the weight is negative; infinite for filters
+    /// that are never negative. Mitchell (B = C = 1/3) on its native support [0, 2] is
+    /// (x - 2)(-7x^2 + 22x - 16) / 18 past 1, negative between 8/7 and 2: 4/7 of the radius.
+    negative_beyond: f32,
 }
 
 const TABLE: usize = 64;
@@ -61,6 +65,10 @@ impl Filter {
             radius,
             table,
             inverse: [0.0; INVERSE],
+            negative_beyond: match kind {
+                FilterKind::Mitchell => radius * 4.0 / 7.0,
+                _ => f32::INFINITY,
+            },
         };
         // Piecewise-constant density of |w| over BINS bins, then its inverse CDF.
         let bin = 2.0 * radius / BINS as f32;
@@ -97,7 +105,14 @@ impl Filter {
         let f = u.clamp(0.0, 1.0) * (INVERSE - 1) as f32;
         let i = (f as usize).min(INVERSE - 2);
         let x = self.inverse[i] + (self.inverse[i + 1] - self.inverse[i]) * (f - i as f32);
-        (x, if self.weight_1d(x) < 0.0 { -1.0 } else { 1.0 })
+        (
+            x,
+            if x.abs() > self.negative_beyond {
+                -1.0
+            } else {
+                1.0
+            },
+        )
     }
 
     /// Weight of a sample `(dx, dy)` pixels from the pixel centre.
@@ -221,6 +236,13 @@ mod tests {
         let m = Filter::new(FilterKind::Mitchell, None);
         assert_eq!(m.sample(0.5).1, 1.0);
         assert_eq!(m.sample(0.001).1, -1.0);
+        // The lobes start where the tabulated weight turns negative.
+        for k in 1..200 {
+            let x = m.radius * k as f32 / 200.0;
+            let negative = m.weight(x, 0.0) < 0.0;
+            let edge = m.radius * 4.0 / 7.0;
+            assert!(negative == (x > edge) || (x - edge).abs() < 0.02, "at {x}");
+        }
         // Mitchell's published value at its centre: (6 - 2B) / 6 = 8/9.
         assert!(
             (Filter::new(FilterKind::Mitchell, None).weight(0.0, 0.0) - (8.0f32 / 9.0).powi(2))
