@@ -14,6 +14,10 @@ pub struct Whitted;
 /// Longest run of transparent surfaces a shadow ray passes through before giving up.
 const MAX_SHADOW_CROSSINGS: usize = 64;
 
+/// Direct light below this (linear, a third of the darkest 8-bit sRGB step) is not worth a
+/// shadow ray.
+const MIN_LIGHT: f32 = 1e-4;
+
 impl Integrator for Whitted {
     fn radiance(&self, scene: &Scene, ray: &Ray) -> Color {
         self.trace(scene, ray, 1, None)
@@ -71,8 +75,8 @@ impl Whitted {
         let base = scene.textures[m.texture].eval(&hit.tex);
         let above = offset_ray_origin(hit.point, n);
 
-        let mut lit = scene.ambient * base * m.ambient;
-        let mut highlight = Color::ZERO;
+        let t = m.transparency;
+        let mut out = scene.ambient * base * (m.ambient * (1.0 - t));
         let view = -d;
         for light in &scene.lights {
             let Some(ls) = light.sample(above) else {
@@ -82,20 +86,21 @@ impl Whitted {
             if cos <= 0.0 {
                 continue;
             }
-            let visible = self.shadow(scene, above, ls.to_light, ls.distance);
-            if visible == Color::ZERO {
-                continue;
-            }
-            let li = ls.radiance * visible;
-            lit += li * base * (m.diffuse * cos);
+            // What this light would add if nothing were in the way: diffuse (weighed by the
+            // opaque part) and the Phong highlight.
+            let mut direct = base * (m.diffuse * cos * (1.0 - t));
             if m.specular != Color::ZERO {
                 let r = reflect(-ls.to_light, n);
-                highlight += li * m.specular * r.dot(view).max(0.0).powf(m.shininess);
+                direct += m.specular * r.dot(view).max(0.0).powf(m.shininess);
             }
+            let unshadowed = ls.radiance * direct;
+            // A shadow ray cannot change what is too faint to see (clear glass away from its
+            // highlight adds nothing here).
+            if unshadowed.max_element() < MIN_LIGHT {
+                continue;
+            }
+            out += unshadowed * self.shadow(scene, above, ls.to_light, ls.distance);
         }
-
-        let t = m.transparency;
-        let mut out = lit * (1.0 - t) + highlight;
         if depth >= scene.settings.max_depth {
             return out;
         }
