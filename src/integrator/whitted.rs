@@ -14,9 +14,10 @@ pub struct Whitted;
 /// Longest run of transparent surfaces a shadow ray passes through before giving up.
 const MAX_SHADOW_CROSSINGS: usize = 64;
 
-/// Direct light below this (linear, a third of the darkest 8-bit sRGB step) is not worth a
-/// shadow ray.
-const MIN_LIGHT: f32 = 1e-4;
+/// A surface that returns less than this fraction of a light's radiance (a third of the
+/// darkest 8-bit sRGB step for a light of radiance 1) is not worth a shadow ray. Relative to
+/// the light, so dim lights in scenes meant for EXR output are never dropped.
+const MIN_RESPONSE: f32 = 1e-4;
 
 impl Integrator for Whitted {
     fn radiance(&self, scene: &Scene, ray: &Ray) -> Color {
@@ -93,13 +94,12 @@ impl Whitted {
                 let r = reflect(-ls.to_light, n);
                 direct += m.specular * r.dot(view).max(0.0).powf(m.shininess);
             }
-            let unshadowed = ls.radiance * direct;
             // A shadow ray cannot change what is too faint to see (clear glass away from its
             // highlight adds nothing here).
-            if unshadowed.max_element() < MIN_LIGHT {
+            if direct.max_element() < MIN_RESPONSE {
                 continue;
             }
-            out += unshadowed * self.shadow(scene, above, ls.to_light, ls.distance);
+            out += ls.radiance * direct * self.shadow(scene, above, ls.to_light, ls.distance);
         }
         if depth >= scene.settings.max_depth {
             return out;

@@ -403,3 +403,18 @@ material = "m"
     let (lo, hi) = range(&s16);
     assert!(lo > 0.2 && hi < 0.55, "64 spp: pixels from {lo} to {hi}");
 }
+
+#[test]
+fn dim_lights_still_light_and_cast_shadows() {
+    // Skipping shadow rays for faint light is relative to the light: a scene lit by a very
+    // dim light (to be exposed later from an EXR) keeps its lighting and its shadows.
+    let text = format!("{LIT_FLOOR}[materials.ball]\ncolor = 1\n[[objects]]\ntype = \"sphere\"\ncenter = [3, 5, 0]\nradius = 1\nmaterial = \"ball\"\n")
+        .replace("position = [0, 10, 0]", "position = [0, 10, 0]\nintensity = 1e-6");
+    let s = scene(&text);
+    let lit = Whitted.radiance(&s, &Ray::new(Vec3A::new(0.0, 3.0, 0.0), -Vec3A::Y));
+    assert!((lit.x - 1e-6).abs() < 1e-8, "{lit}");
+    // Under the ball, as seen from the light, the floor is dark.
+    let under = Vec3A::new(6.0, 0.0, 0.0);
+    let shadowed = Whitted.radiance(&s, &Ray::new(under + Vec3A::Y * 0.5, -Vec3A::Y));
+    assert_eq!(shadowed, Color::ZERO);
+}
