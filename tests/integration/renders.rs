@@ -14,6 +14,15 @@ fn render_file(path: &str, threads: usize, adjust: impl FnOnce(&mut snell::Scene
     render(&scene, &Whitted, Some(threads), &|_| {}).unwrap()
 }
 
+/// The seed scene rendered square at `size` pixels and `spp` samples per pixel.
+fn seed_at(size: u32, spp: u32) -> Image {
+    render_file("scenes/seed.toml", 2, |s| {
+        s.settings.width = size;
+        s.settings.height = size;
+        s.settings.spp = spp;
+    })
+}
+
 /// Compares 8-bit images: the mean difference must be tiny and only a few pixels (edges,
 /// where a different rounding can flip a sample) may differ noticeably.
 fn assert_close_to_golden(actual: &[u8], golden: &[u8], what: &str) {
@@ -35,11 +44,7 @@ fn assert_close_to_golden(actual: &[u8], golden: &[u8], what: &str) {
 
 #[test]
 fn golden_seed_scene() {
-    let img = render_file("scenes/seed.toml", 2, |s| {
-        s.settings.width = 96;
-        s.settings.height = 96;
-        s.settings.spp = 4;
-    });
+    let img = seed_at(96, 4);
     let actual = to_srgb8(&img);
     let golden_path = repo("tests/golden/seed-96.png");
     if std::env::var_os("SNELL_BLESS").is_some() {
@@ -91,11 +96,7 @@ fn toml_and_json_scenes_render_the_same() {
 #[test]
 fn seed_scene_shows_what_the_report_got_wrong() {
     // Full-size geometry, coarse sampling: probe the pixels where each fixed bug shows.
-    let img = render_file("scenes/seed.toml", 2, |s| {
-        s.settings.width = 256;
-        s.settings.height = 256;
-        s.settings.spp = 1;
-    });
+    let img = seed_at(256, 1);
     let at = |x: u32, y: u32| img.get(x, y);
     // The cylinder (green) is drawn: the report's missing factor 2 made it invisible.
     let cylinder = at(220, 175);
