@@ -44,10 +44,17 @@ pub fn render(
     let tiles_x = w.div_ceil(TILE);
     let tiles_y = h.div_ceil(TILE);
     let done = AtomicU64::new(0);
+    // Visit the tiles in a scattered order, so every stretch of work mixes sky and busy
+    // regions and the progress bar's ETA holds steady; results are placed by tile index, so
+    // the image does not depend on the order.
+    let n = tiles_x * tiles_y;
+    let step = scatter_step(n);
+    let tile_of = |k: u32| ((k as u64 * step as u64) % n as u64) as u32;
     let tiles: Vec<Vec<Color>> = pool.install(|| {
-        (0..tiles_x * tiles_y)
+        (0..n)
             .into_par_iter()
-            .map(|i| {
+            .map(|k| {
+                let i = tile_of(k);
                 let (x0, y0) = ((i % tiles_x) * TILE, (i / tiles_x) * TILE);
                 let (x1, y1) = ((x0 + TILE).min(w), (y0 + TILE).min(h));
                 let mut out = Vec::with_capacity(((x1 - x0) * (y1 - y0)) as usize);
@@ -63,8 +70,8 @@ pub fn render(
             .collect()
     });
     let mut image = Image::new(w, h);
-    for (i, tile) in tiles.into_iter().enumerate() {
-        let i = i as u32;
+    for (k, tile) in tiles.into_iter().enumerate() {
+        let i = tile_of(k as u32);
         let (x0, y0) = ((i % tiles_x) * TILE, (i / tiles_x) * TILE);
         let tw = (x0 + TILE).min(w) - x0;
         for (k, c) in tile.into_iter().enumerate() {
@@ -73,6 +80,19 @@ pub fn render(
         }
     }
     Ok(image)
+}
+
+/// A step coprime with `n` near `n / phi`: `k * step mod n` then visits every index once,
+/// spread evenly over the range.
+fn scatter_step(n: u32) -> u32 {
+    fn gcd(a: u32, b: u32) -> u32 {
+        if b == 0 { a } else { gcd(b, a % b) }
+    }
+    let mut step = ((n as f64 / 1.618_034) as u32).max(1);
+    while gcd(step, n) != 1 {
+        step += 1;
+    }
+    step
 }
 
 /// One pixel: `spp = n * n` samples, one jittered in each cell of an n x n grid, placed by
@@ -107,5 +127,23 @@ pub fn render_pixel(scene: &Scene, integrator: &dyn Integrator, x: u32, y: u32) 
     } else {
         // Only possible when most samples fall in Mitchell's negative lobes.
         unsigned / (n * n) as f32
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::scatter_step;
+
+    #[test]
+    fn scattered_order_visits_every_tile_once() {
+        for n in [1u32, 2, 7, 64, 100, 4096, 4097] {
+            let step = scatter_step(n);
+            let mut seen = vec![false; n as usize];
+            for k in 0..n {
+                let i = ((k as u64 * step as u64) % n as u64) as usize;
+                assert!(!seen[i], "n = {n}: tile {i} twice");
+                seen[i] = true;
+            }
+        }
     }
 }
