@@ -28,9 +28,6 @@ pub struct Filter {
     pub kind: FilterKind,
     /// Half-width of the support, in pixels.
     pub radius: f32,
-    /// The 1D weight tabulated at `TABLE` even steps over `[0, radius]` (the exact formulas
-    /// cost an `exp` per sample; the table is exact at its points and linear between).
-    table: [f32; TABLE],
     /// Inverse of the cumulative distribution of `|weight|` over `[-radius, radius]`, at
     /// `INVERSE` even steps of probability: turns a uniform number into an offset whose
     /// density follows the filter.
@@ -41,7 +38,6 @@ pub struct Filter {
     negative_beyond: f32,
 }
 
-const TABLE: usize = 64;
 const INVERSE: usize = 257;
 /// Bins of the 1D distribution the inverse is built from.
 const BINS: usize = 1024;
@@ -56,14 +52,9 @@ impl Filter {
             FilterKind::Mitchell => 2.0,
         };
         let radius = radius.unwrap_or(default);
-        let mut table = [0.0; TABLE];
-        for (i, w) in table.iter_mut().enumerate() {
-            *w = exact_weight(kind, radius, radius * i as f32 / (TABLE - 1) as f32);
-        }
         let mut filter = Filter {
             kind,
             radius,
-            table,
             inverse: [0.0; INVERSE],
             negative_beyond: match kind {
                 FilterKind::Mitchell => radius * 4.0 / 7.0,
@@ -121,16 +112,14 @@ impl Filter {
         self.weight_1d(dx) * self.weight_1d(dy)
     }
 
-    #[inline]
+    /// Samples are placed by the filter, not weighted by it, so this is off the hot path:
+    /// only the construction of `inverse` and the tests call it.
     fn weight_1d(&self, x: f32) -> f32 {
         let x = x.abs();
         if x > self.radius {
             return 0.0;
         }
-        let f = x / self.radius * (TABLE - 1) as f32;
-        let i = (f as usize).min(TABLE - 2);
-        let frac = f - i as f32;
-        self.table[i] + (self.table[i + 1] - self.table[i]) * frac
+        exact_weight(self.kind, self.radius, x)
     }
 }
 
