@@ -191,7 +191,7 @@ mod tests {
                 let Some(h) = c.intersect(&ray, f32::INFINITY) else {
                     continue;
                 };
-                let s = c.surface(ray.at(h.t), h.part, false);
+                let s = c.surface(ray.at(h.t), &h, false);
                 let o = offset_ray_origin(s.point, s.normal);
                 let l = (light - o).normalize();
                 if s.normal.dot(l) > 0.0 {

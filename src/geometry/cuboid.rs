@@ -51,11 +51,15 @@ impl Cuboid {
             Some(ShapeHit {
                 t: near,
                 part: near_part,
+                prim: 0,
+                bary: Vec2::ZERO,
             })
         } else if near <= 0.0 && far > 0.0 && far < t_max {
             Some(ShapeHit {
                 t: far,
                 part: far_part,
+                prim: 0,
+                bary: Vec2::ZERO,
             })
         } else {
             None

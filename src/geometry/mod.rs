@@ -7,6 +7,7 @@ mod cone;
 mod cuboid;
 mod cylinder;
 mod disk;
+pub mod mesh;
 mod plane;
 mod rect;
 mod sphere;
@@ -17,6 +18,7 @@ pub use cuboid::Cuboid;
 pub use cylinder::Cylinder;
 pub(crate) use cylinder::angle_u;
 pub use disk::Disk;
+pub use mesh::Mesh;
 pub use plane::Plane;
 pub use rect::Rect;
 pub use sphere::Sphere;
@@ -33,6 +35,10 @@ pub struct ShapeHit {
     pub t: f32,
     /// Shape-specific part index (0 for shapes with one part).
     pub part: u8,
+    /// Index of the triangle hit, for meshes (0 otherwise).
+    pub prim: u32,
+    /// Barycentric weights of the second and third corners, for triangles (zero otherwise).
+    pub bary: Vec2,
 }
 
 /// Surface details at a hit point, in object space.
@@ -65,6 +71,8 @@ pub enum Shape {
     Disk(Disk),
     /// A single triangle.
     Triangle(Triangle),
+    /// A triangle mesh, shared by every object that places it.
+    Mesh(std::sync::Arc<Mesh>),
 }
 
 impl Shape {
@@ -80,13 +88,23 @@ impl Shape {
             Shape::Cone(s) => s.intersect(ray, t_max),
             Shape::Disk(s) => s.intersect(ray, t_max),
             Shape::Triangle(s) => s.intersect(ray, t_max),
+            Shape::Mesh(s) => s.intersect(ray, t_max),
         }
     }
 
-    /// Surface details for a hit at object-space point `p` on `part`. The uv costs
-    /// trigonometry on round shapes, so it is only worked out when `want_uv` is set (it is
-    /// zero otherwise).
-    pub fn surface(&self, p: Vec3A, part: u8, want_uv: bool) -> Surface {
+    /// Whether anything is hit with `0 < t < t_max` (meshes stop at the first triangle).
+    #[inline]
+    pub fn occluded(&self, ray: &Ray, t_max: f32) -> bool {
+        match self {
+            Shape::Mesh(s) => s.occluded(ray, t_max),
+            _ => self.intersect(ray, t_max).is_some(),
+        }
+    }
+
+    /// Surface details for `hit`, at object-space point `p`. The uv costs trigonometry on
+    /// round shapes, so it is only worked out when `want_uv` is set (it is zero otherwise).
+    pub fn surface(&self, p: Vec3A, hit: &ShapeHit, want_uv: bool) -> Surface {
+        let part = hit.part;
         match self {
             Shape::Sphere(s) => s.surface(p, want_uv),
             Shape::Plane(s) => s.surface(p),
@@ -96,6 +114,7 @@ impl Shape {
             Shape::Cone(s) => s.surface(p, part, want_uv),
             Shape::Disk(s) => s.surface(p),
             Shape::Triangle(s) => s.surface(p),
+            Shape::Mesh(s) => s.surface(hit),
         }
     }
 
@@ -110,6 +129,7 @@ impl Shape {
             Shape::Cone(s) => Some(s.bounds()),
             Shape::Disk(s) => Some(s.bounds()),
             Shape::Triangle(s) => Some(s.bounds()),
+            Shape::Mesh(s) => Some(s.bounds()),
         }
     }
 
@@ -136,6 +156,7 @@ impl Shape {
             Shape::Cone(_) => "cone",
             Shape::Disk(_) => "disk",
             Shape::Triangle(_) => "triangle",
+            Shape::Mesh(_) => "mesh",
         }
     }
 }
@@ -185,7 +206,12 @@ pub(crate) fn nearer(a: Option<ShapeHit>, b: Option<ShapeHit>) -> Option<ShapeHi
 /// `t` as a hit on `part` when it lies in `(0, t_max)`.
 #[inline]
 pub(crate) fn in_range(t: f32, t_max: f32, part: u8) -> Option<ShapeHit> {
-    (t > 0.0 && t < t_max).then_some(ShapeHit { t, part })
+    (t > 0.0 && t < t_max).then_some(ShapeHit {
+        t,
+        part,
+        prim: 0,
+        bary: Vec2::ZERO,
+    })
 }
 
 #[cfg(test)]
@@ -202,7 +228,7 @@ pub(crate) mod test_util {
         let ray = Ray::new(Vec3A::from_array(origin), Vec3A::from_array(dir));
         shape.intersect(&ray, f32::INFINITY).map(|h| {
             assert!(h.t.is_finite() && h.t > 0.0);
-            (h.t, shape.surface(ray.at(h.t), h.part, true))
+            (h.t, shape.surface(ray.at(h.t), &h, true))
         })
     }
 }

@@ -1,5 +1,95 @@
-use super::{ShapeHit, Surface, in_range};
+use super::{ShapeHit, Surface};
 use crate::math::{Aabb, Ray, Vec2, Vec3A};
+use glam::Mat3A;
+
+/// A ray prepared for the watertight ray-triangle test of Woop, Benthin and Wald (JCGT
+/// 2013): translated to the origin and sheared so that it runs along +z. Two triangles that
+/// share an edge compute exactly the same edge function for it (with opposite signs), so a
+/// ray can never slip between them.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct WatertightRay {
+    origin: Vec3A,
+    /// Permutes the axes (the ray's largest component last) and shears: applied to a vertex
+    /// relative to the origin it gives `(x - sx z, y - sy z, sz z)` exactly as the paper's
+    /// scalar code does, since the other terms are exact zeros and ones.
+    shear: Mat3A,
+}
+
+impl WatertightRay {
+    /// Prepares `ray` (any non-zero direction).
+    #[inline]
+    pub(crate) fn new(ray: &Ray) -> Self {
+        let d = ray.dir;
+        let a = d.abs();
+        let kz = if a.x >= a.y && a.x >= a.z {
+            0
+        } else if a.y >= a.z {
+            1
+        } else {
+            2
+        };
+        let mut kx = (kz + 1) % 3;
+        let mut ky = (kx + 1) % 3;
+        // Keep the winding: swap the other two axes when the ray runs toward -z.
+        if d[kz] < 0.0 {
+            std::mem::swap(&mut kx, &mut ky);
+        }
+        let (sx, sy, sz) = (d[kx] / d[kz], d[ky] / d[kz], 1.0 / d[kz]);
+        let mut cols = [Vec3A::ZERO; 3];
+        cols[kx] = Vec3A::X;
+        cols[ky] = Vec3A::Y;
+        cols[kz] = Vec3A::new(-sx, -sy, sz);
+        WatertightRay {
+            origin: ray.origin,
+            shear: Mat3A::from_cols(cols[0], cols[1], cols[2]),
+        }
+    }
+
+    /// Hit of the triangle `(a, b, c)` with `0 < t < t_max`: `(t, weight of b, weight of c)`.
+    #[inline(always)]
+    pub(crate) fn intersect(
+        &self,
+        a: Vec3A,
+        b: Vec3A,
+        c: Vec3A,
+        t_max: f32,
+    ) -> Option<(f32, f32, f32)> {
+        let a = self.shear * (a - self.origin);
+        let b = self.shear * (b - self.origin);
+        let c = self.shear * (c - self.origin);
+        let mut u = c.x * b.y - c.y * b.x;
+        let mut v = a.x * c.y - a.y * c.x;
+        let mut w = b.x * a.y - b.y * a.x;
+        if u == 0.0 || v == 0.0 || w == 0.0 {
+            // On (or within rounding of) an edge: decide in double precision, where these
+            // products of floats are exact, so the two triangles of an edge agree.
+            let f =
+                |p: f32, q: f32, r: f32, s: f32| (p as f64 * q as f64 - r as f64 * s as f64) as f32;
+            u = f(c.x, b.y, c.y, b.x);
+            v = f(a.x, c.y, a.y, c.x);
+            w = f(b.x, a.y, b.y, a.x);
+        }
+        if (u < 0.0 || v < 0.0 || w < 0.0) && (u > 0.0 || v > 0.0 || w > 0.0) {
+            return None;
+        }
+        let det = u + v + w;
+        if det == 0.0 || det.is_nan() {
+            return None;
+        }
+        let t_scaled = u * a.z + v * b.z + w * c.z;
+        // Compare before dividing: t = t_scaled / det must lie in (0, t_max).
+        if det > 0.0 {
+            if t_scaled <= 0.0 || t_scaled >= t_max * det {
+                return None;
+            }
+        } else if t_scaled >= 0.0 || t_scaled <= t_max * det {
+            return None;
+        }
+        let inv = 1.0 / det;
+        let t = t_scaled * inv;
+        (t > 0.0 && t < t_max).then_some((t, v * inv, w * inv))
+    }
+}
 
 /// A triangle with corners `a`, `b`, `c`; its front side is `(b - a) x (c - a)`
 /// (counter-clockwise seen from the front). Both sides are hit.
@@ -25,26 +115,17 @@ impl Triangle {
         })
     }
 
-    /// Möller-Trumbore intersection.
+    /// Watertight intersection (the same test as mesh triangles).
     #[inline]
     pub fn intersect(&self, ray: &Ray, t_max: f32) -> Option<ShapeHit> {
-        let p = ray.dir.cross(self.e2);
-        let det = self.e1.dot(p);
-        if det == 0.0 {
-            return None;
-        }
-        let inv = 1.0 / det;
-        let s = ray.origin - self.a;
-        let u = s.dot(p) * inv;
-        if !(0.0..=1.0).contains(&u) {
-            return None;
-        }
-        let q = s.cross(self.e1);
-        let v = ray.dir.dot(q) * inv;
-        if v < 0.0 || u + v > 1.0 {
-            return None;
-        }
-        in_range(self.e2.dot(q) * inv, t_max, 0)
+        let (t, u, v) =
+            WatertightRay::new(ray).intersect(self.a, self.a + self.e1, self.a + self.e2, t_max)?;
+        Some(ShapeHit {
+            t,
+            part: 0,
+            prim: 0,
+            bary: Vec2::new(u, v),
+        })
     }
 
     fn barycentric(&self, p: Vec3A) -> Vec2 {

@@ -1,0 +1,554 @@
+//! A triangle mesh: its own BVH over its triangles (obvhs's compressed eight-wide BVH, built
+//! by PLOC), watertight triangle tests, and per-vertex normals and uvs. A mesh is shared
+//! (`Arc`) by every object that places it, so a thousand instances cost one copy.
+
+use super::triangle::WatertightRay;
+use super::{ShapeHit, Surface};
+use crate::math::{Aabb, Ray, Vec2, Vec3, Vec3A};
+// obvhs's traversal macro names `UVec2` unqualified.
+use glam::UVec2;
+use glam::Vec4;
+use obvhs::cwbvh::CwBvh;
+use obvhs::cwbvh::node::{CwBvhNode, extract_byte64};
+use std::time::{Duration, Instant};
+
+/// Most triangles one mesh may have (indices are `u32`; the BVH needs about 16 bytes and
+/// the mesh about 60 bytes per triangle, so this is some 20 GiB).
+pub const MAX_TRIANGLES: usize = 1 << 28;
+
+/// Geometry read from a file or built in code, before it is arranged for ray queries.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct MeshInput {
+    /// Vertex positions.
+    pub positions: Vec<Vec3>,
+    /// Per-vertex normals (same length as `positions`), or empty.
+    pub normals: Vec<Vec3>,
+    /// Per-vertex texture coordinates, or empty.
+    pub uvs: Vec<Vec2>,
+    /// Corner indices of each triangle, counter-clockwise seen from the front.
+    pub triangles: Vec<[u32; 3]>,
+    /// Per triangle, the index of its material slot (see [`Mesh::slots`]), or empty.
+    pub triangle_slots: Vec<u16>,
+}
+
+/// A triangle mesh arranged for ray queries.
+#[derive(Debug, PartialEq)]
+pub struct Mesh {
+    /// Corner positions of each triangle, in BVH order (gathered, so a test reads one place).
+    corners: Vec<[Vec3; 3]>,
+    /// Vertex indices of each triangle, in BVH order (for normals and uvs).
+    faces: Vec<[u32; 3]>,
+    normals: Vec<Vec3>,
+    uvs: Vec<Vec2>,
+    /// Material slot of each triangle, in BVH order, or empty.
+    slots: Vec<u16>,
+    bvh: CwBvh,
+    bounds: Aabb,
+    /// Time spent building the BVH.
+    pub build_time: Duration,
+}
+
+impl Mesh {
+    /// Arranges `input` for ray queries. Triangles with zero area (or non-finite corners) are
+    /// dropped: the returned count says how many. Fails on an index out of range, a
+    /// mismatched normal or uv count, or a mesh with no triangle left.
+    pub fn new(input: MeshInput) -> Result<(Mesh, usize), String> {
+        let MeshInput {
+            positions,
+            normals,
+            uvs,
+            triangles,
+            triangle_slots,
+        } = input;
+        if triangles.len() > MAX_TRIANGLES {
+            return Err(format!(
+                "{} triangles is more than the {MAX_TRIANGLES} a mesh may have",
+                triangles.len()
+            ));
+        }
+        if !normals.is_empty() && normals.len() != positions.len() {
+            return Err(format!(
+                "{} normals for {} vertices",
+                normals.len(),
+                positions.len()
+            ));
+        }
+        if !uvs.is_empty() && uvs.len() != positions.len() {
+            return Err(format!(
+                "{} uvs for {} vertices",
+                uvs.len(),
+                positions.len()
+            ));
+        }
+        if !triangle_slots.is_empty() && triangle_slots.len() != triangles.len() {
+            return Err(format!(
+                "{} material slots for {} triangles",
+                triangle_slots.len(),
+                triangles.len()
+            ));
+        }
+        let mut kept = Vec::with_capacity(triangles.len());
+        let mut aabbs = Vec::with_capacity(triangles.len());
+        let mut bounds = Aabb::EMPTY;
+        for (i, t) in triangles.iter().enumerate() {
+            if let Some(&bad) = t.iter().find(|&&k| k as usize >= positions.len()) {
+                return Err(format!(
+                    "triangle {i} uses vertex {bad}, but there are {} vertices",
+                    positions.len()
+                ));
+            }
+            let [a, b, c] = t.map(|k| Vec3A::from(positions[k as usize]));
+            let area2 = (b - a).cross(c - a).length_squared();
+            if !(area2 > 0.0 && area2.is_finite()) {
+                continue;
+            }
+            let mut bx = Aabb::new(a, b);
+            bx.grow(c);
+            bounds = bounds.union(&bx);
+            aabbs.push(obvhs::aabb::Aabb::new(bx.min, bx.max));
+            kept.push(i);
+        }
+        let dropped = triangles.len() - kept.len();
+        if kept.is_empty() {
+            return Err(if triangles.is_empty() {
+                "the mesh has no triangles".to_string()
+            } else {
+                format!(
+                    "all {} triangles have zero area; nothing to render",
+                    triangles.len()
+                )
+            });
+        }
+        let start = Instant::now();
+        let bvh = obvhs::cwbvh::builder::build_cwbvh(
+            &aabbs,
+            obvhs::BvhBuildParams::medium_build(),
+            &mut Duration::default(),
+        );
+        // Lay the triangles out in the order the BVH's leaves name them.
+        let order: Vec<usize> = bvh
+            .primitive_indices
+            .iter()
+            .map(|&p| kept[p as usize])
+            .collect();
+        let faces: Vec<[u32; 3]> = order.iter().map(|&i| triangles[i]).collect();
+        let corners = faces
+            .iter()
+            .map(|f| f.map(|k| positions[k as usize]))
+            .collect();
+        let slots = if triangle_slots.is_empty() {
+            vec![]
+        } else {
+            order.iter().map(|&i| triangle_slots[i]).collect()
+        };
+        Ok((
+            Mesh {
+                corners,
+                faces,
+                normals,
+                uvs,
+                slots,
+                bvh,
+                bounds,
+                build_time: start.elapsed(),
+            },
+            dropped,
+        ))
+    }
+
+    /// Number of triangles (after dropping degenerate ones).
+    pub fn triangle_count(&self) -> usize {
+        self.corners.len()
+    }
+
+    /// Whether the mesh has per-vertex normals (smooth shading).
+    pub fn has_normals(&self) -> bool {
+        !self.normals.is_empty()
+    }
+
+    /// Whether the mesh has texture coordinates.
+    pub fn has_uvs(&self) -> bool {
+        !self.uvs.is_empty()
+    }
+
+    /// Bytes taken by the BVH itself (nodes and primitive indices).
+    pub fn bvh_bytes(&self) -> usize {
+        self.bvh.nodes.len() * std::mem::size_of::<obvhs::cwbvh::node::CwBvhNode>()
+            + self.bvh.primitive_indices.len() * 4
+    }
+
+    /// Bytes taken by the triangles, normals, uvs and slots.
+    pub fn geometry_bytes(&self) -> usize {
+        self.corners.len() * 36
+            + self.faces.len() * 12
+            + self.normals.len() * 12
+            + self.uvs.len() * 8
+            + self.slots.len() * 2
+    }
+
+    /// Material slot of triangle `prim` (as reported in a [`ShapeHit`]); 0 without slots.
+    #[inline]
+    pub fn slot(&self, prim: u32) -> u16 {
+        self.slots.get(prim as usize).copied().unwrap_or(0)
+    }
+
+    /// Object-space bounds.
+    pub fn bounds(&self) -> Aabb {
+        self.bounds
+    }
+
+    /// Nearest hit with `0 < t < t_max`: the triangle's index and barycentrics come back in
+    /// `prim` and `bary`.
+    #[inline]
+    pub fn intersect(&self, ray: &Ray, t_max: f32) -> Option<ShapeHit> {
+        let wt = WatertightRay::new(ray);
+        let nr = NodeRay::new(ray);
+        let mut t_max = t_max;
+        let mut best = None;
+        let mut state = self.bvh.new_traversal(ray.dir);
+        let mut node;
+        obvhs::traverse!(
+            self.bvh,
+            node,
+            state,
+            nr.hits(node, t_max, state.oct_inv4),
+            {
+                let prim = state.primitive_id;
+                let [a, b, c] = self.corners[prim as usize];
+                if let Some((t, u, v)) = wt.intersect(a.into(), b.into(), c.into(), t_max) {
+                    t_max = t;
+                    best = Some(ShapeHit {
+                        t,
+                        part: 0,
+                        prim,
+                        bary: Vec2::new(u, v),
+                    });
+                }
+            }
+        );
+        best
+    }
+
+    /// Whether any triangle is hit with `0 < t < t_max`; stops at the first found.
+    #[inline]
+    pub fn occluded(&self, ray: &Ray, t_max: f32) -> bool {
+        let wt = WatertightRay::new(ray);
+        let nr = NodeRay::new(ray);
+        let mut state = self.bvh.new_traversal(ray.dir);
+        let mut node;
+        let mut hit = false;
+        obvhs::traverse!(
+            self.bvh,
+            node,
+            state,
+            nr.hits(node, t_max, state.oct_inv4),
+            {
+                let [a, b, c] = self.corners[state.primitive_id as usize];
+                if wt.intersect(a.into(), b.into(), c.into(), t_max).is_some() {
+                    hit = true;
+                    break;
+                }
+            }
+        );
+        hit
+    }
+
+    /// Surface details of a hit: the point re-projected from the barycentrics, the geometric
+    /// normal (turned to agree with the vertex normals when there are any, since exporters
+    /// keep normals consistent more reliably than winding), and the interpolated uv (the
+    /// barycentrics when the mesh has none).
+    pub fn surface(&self, hit: &ShapeHit) -> Surface {
+        let [a, b, c] = self.corners[hit.prim as usize].map(Vec3A::from);
+        let (u, v) = (hit.bary.x, hit.bary.y);
+        let w = 1.0 - u - v;
+        let point = a * w + b * u + c * v;
+        let mut normal = (b - a).cross(c - a).normalize();
+        if let Some(shading) = self.interpolated_normal(hit)
+            && shading.dot(normal) < 0.0
+        {
+            normal = -normal;
+        }
+        let uv = if self.uvs.is_empty() {
+            hit.bary
+        } else {
+            let f = self.faces[hit.prim as usize];
+            self.uvs[f[0] as usize] * w + self.uvs[f[1] as usize] * u + self.uvs[f[2] as usize] * v
+        };
+        Surface { point, normal, uv }
+    }
+
+    /// The vertex normals interpolated at a hit (unit, object space), when the mesh has them.
+    pub fn interpolated_normal(&self, hit: &ShapeHit) -> Option<Vec3A> {
+        if self.normals.is_empty() {
+            return None;
+        }
+        let f = self.faces[hit.prim as usize];
+        let (u, v) = (hit.bary.x, hit.bary.y);
+        let n = Vec3A::from(self.normals[f[0] as usize]) * (1.0 - u - v)
+            + Vec3A::from(self.normals[f[1] as usize]) * u
+            + Vec3A::from(self.normals[f[2] as usize]) * v;
+        let n = n.normalize_or_zero();
+        (n != Vec3A::ZERO).then_some(n)
+    }
+}
+
+/// A ray prepared for the tests against the eight quantised child boxes of a BVH node.
+///
+/// obvhs's own node test clips every box at a fixed distance of 1e-4 (so a scene in
+/// millimetres loses nearby hits) and culls flat boxes (a floor, a quad) by rounding; this one
+/// starts at 0 and gives the far side a relative slack, as snell's object BVH does.
+struct NodeRay {
+    origin: Vec3A,
+    inv_dir: Vec3A,
+    negative: [bool; 3],
+}
+
+impl NodeRay {
+    #[inline(always)]
+    fn new(ray: &Ray) -> Self {
+        // Capped so that nothing in the node test overflows to infinity (and then to NaN when
+        // multiplied by a zero) for coordinates up to the 1e15 scene files allow.
+        const CAP: f32 = 1e20;
+        let inv = Vec3A::ONE / ray.dir;
+        let capped = Vec3A::splat(CAP).copysign(inv);
+        NodeRay {
+            origin: ray.origin,
+            inv_dir: Vec3A::select(inv.abs().cmple(Vec3A::splat(CAP)), inv, capped),
+            negative: [ray.dir.x < 0.0, ray.dir.y < 0.0, ray.dir.z < 0.0],
+        }
+    }
+
+    /// The traversal's hit mask for `node`: per child box met in `[0, t_max]`, its bits in
+    /// obvhs's encoding (inner children in the high byte, leaf triangles in the low 24 bits).
+    #[inline(always)]
+    fn hits(&self, node: &CwBvhNode, t_max: f32, oct_inv4: u32) -> u32 {
+        // Box corners are stored as bytes on a grid of `extent` steps from `node.p`.
+        let step = node.compute_extent() * self.inv_dir;
+        let start = (Vec3A::from(node.p) - self.origin) * self.inv_dir;
+        let (child_bits, bit_index) = node.get_child_and_index_bits(oct_inv4);
+        let quads = |lo: &[u8; 8], hi: &[u8; 8], axis: usize, half: usize| {
+            let q = |v: &[u8; 8]| {
+                Vec4::new(
+                    v[half * 4] as f32,
+                    v[half * 4 + 1] as f32,
+                    v[half * 4 + 2] as f32,
+                    v[half * 4 + 3] as f32,
+                )
+            };
+            let (near, far) = if self.negative[axis] {
+                (q(hi), q(lo))
+            } else {
+                (q(lo), q(hi))
+            };
+            let (s, o) = (Vec4::splat(step[axis]), Vec4::splat(start[axis]));
+            (near * s + o, far * s + o)
+        };
+        let mut mask = 0u32;
+        for half in 0..2 {
+            let (x0, x1) = quads(&node.child_min_x, &node.child_max_x, 0, half);
+            let (y0, y1) = quads(&node.child_min_y, &node.child_max_y, 1, half);
+            let (z0, z1) = quads(&node.child_min_z, &node.child_max_z, 2, half);
+            let near = x0.max(y0).max(z0).max(Vec4::ZERO);
+            let far = (x1.min(y1).min(z1) * SLACK).min(Vec4::splat(t_max));
+            let hit = near.cmple(far).bitmask();
+            for lane in 0..4 {
+                if hit & (1 << lane) != 0 {
+                    let child = half * 4 + lane;
+                    mask |= extract_byte64(child_bits, child) << extract_byte64(bit_index, child);
+                }
+            }
+        }
+        mask
+    }
+}
+
+/// Widens every box's far side by this factor, so rounding never culls a box the ray only
+/// grazes or a box with no thickness.
+const SLACK: f32 = 1.0 + 1e-5;
+
+/// Area-weighted vertex normals: each triangle adds its unnormalised normal (whose length is
+/// twice its area) to its three corners.
+pub fn area_weighted_normals(positions: &[Vec3], triangles: &[[u32; 3]]) -> Vec<Vec3> {
+    let mut normals = vec![Vec3::ZERO; positions.len()];
+    for t in triangles {
+        let Some(p) = t
+            .iter()
+            .map(|&k| positions.get(k as usize).copied())
+            .collect::<Option<Vec<_>>>()
+        else {
+            continue;
+        };
+        let n = (p[1] - p[0]).cross(p[2] - p[0]);
+        if n.is_finite() {
+            for &k in t {
+                normals[k as usize] += n;
+            }
+        }
+    }
+    for n in &mut normals {
+        *n = n.normalize_or_zero();
+    }
+    normals
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::math::Rng;
+
+    /// A closed unit cube from 12 triangles, outward winding.
+    fn cube() -> MeshInput {
+        let positions: Vec<Vec3> = (0..8)
+            .map(|i| Vec3::new((i & 1) as f32, ((i >> 1) & 1) as f32, ((i >> 2) & 1) as f32))
+            .collect();
+        let quads = [
+            [0, 2, 3, 1], // z = 0, facing -z
+            [4, 5, 7, 6], // z = 1
+            [0, 1, 5, 4], // y = 0
+            [2, 6, 7, 3], // y = 1
+            [0, 4, 6, 2], // x = 0
+            [1, 3, 7, 5], // x = 1
+        ];
+        let triangles = quads
+            .iter()
+            .flat_map(|q| [[q[0], q[1], q[2]], [q[0], q[2], q[3]]])
+            .collect();
+        MeshInput {
+            positions,
+            triangles,
+            ..Default::default()
+        }
+    }
+
+    #[test]
+    fn closed_cube_is_hit_from_outside_and_inside() {
+        let (m, dropped) = Mesh::new(cube()).unwrap();
+        assert_eq!((m.triangle_count(), dropped), (12, 0));
+        let ray = Ray::new(Vec3A::new(0.3, 0.4, 5.0), Vec3A::NEG_Z);
+        let h = m.intersect(&ray, f32::INFINITY).unwrap();
+        assert!((h.t - 4.0).abs() < 1e-6);
+        let s = m.surface(&h);
+        assert!(
+            (s.normal - Vec3A::Z).length() < 1e-6,
+            "outward normal {}",
+            s.normal
+        );
+        assert!((s.point - Vec3A::new(0.3, 0.4, 1.0)).length() < 1e-6);
+        // From inside, the far side.
+        let inside = Ray::new(Vec3A::splat(0.5), Vec3A::X);
+        let h = m.intersect(&inside, f32::INFINITY).unwrap();
+        assert!((h.t - 0.5).abs() < 1e-6);
+        assert!(m.intersect(&inside, 0.4).is_none(), "t_max respected");
+        assert!(m.occluded(&inside, 0.6) && !m.occluded(&inside, 0.4));
+        // A miss.
+        let miss = Ray::new(Vec3A::new(2.0, 2.0, 5.0), Vec3A::NEG_Z);
+        assert!(m.intersect(&miss, f32::INFINITY).is_none());
+    }
+
+    #[test]
+    fn no_ray_slips_through_shared_edges() {
+        // A flat grid of 2 x 32 x 32 triangles sharing edges and vertices: rays aimed at the
+        // edges and vertices themselves (where each triangle's test is at its limit) must
+        // all hit, from every direction.
+        let n = 32;
+        let positions: Vec<Vec3> = (0..=n)
+            .flat_map(|j| {
+                (0..=n).map(move |i| Vec3::new(i as f32 / n as f32, j as f32 / n as f32, 0.0))
+            })
+            .collect();
+        let idx = |i: u32, j: u32| j * (n + 1) + i;
+        let mut triangles = vec![];
+        for j in 0..n {
+            for i in 0..n {
+                triangles.push([idx(i, j), idx(i + 1, j), idx(i + 1, j + 1)]);
+                triangles.push([idx(i, j), idx(i + 1, j + 1), idx(i, j + 1)]);
+            }
+        }
+        let (m, _) = Mesh::new(MeshInput {
+            positions,
+            triangles,
+            ..Default::default()
+        })
+        .unwrap();
+        let mut rng = Rng::new(7);
+        let mut misses = 0;
+        for k in 0..20_000 {
+            // Targets on the grid lines (and the diagonals), strictly inside the grid.
+            let a = 1 + (rng.next_f32() * (n - 1) as f32) as u32;
+            let f = rng.next_f32();
+            let target = match k % 3 {
+                0 => Vec3A::new(a as f32 / n as f32, f * 0.9 + 0.05, 0.0),
+                1 => Vec3A::new(f * 0.9 + 0.05, a as f32 / n as f32, 0.0),
+                _ => {
+                    let b = 1 + (rng.next_f32() * (n - 1) as f32) as u32;
+                    let t = rng.next_f32() / n as f32;
+                    Vec3A::new(a as f32 / n as f32 + t, b as f32 / n as f32 + t, 0.0)
+                }
+            };
+            let dir = Vec3A::new(
+                rng.next_f32() - 0.5,
+                rng.next_f32() - 0.5,
+                -(0.05 + rng.next_f32()),
+            )
+            .normalize();
+            let origin = target - dir * (1.0 + 3.0 * rng.next_f32());
+            let ray = Ray::new(origin, dir);
+            if m.intersect(&ray, f32::INFINITY).is_none() {
+                let wt = WatertightRay::new(&ray);
+                let brute = m.corners.iter().any(|[a, b, c]| {
+                    wt.intersect((*a).into(), (*b).into(), (*c).into(), f32::INFINITY)
+                        .is_some()
+                });
+                eprintln!("miss k={k} target={target} brute={brute}");
+                misses += 1;
+            }
+        }
+        assert_eq!(misses, 0, "rays slipped between triangles");
+    }
+
+    #[test]
+    fn smooth_normals_and_uvs_are_interpolated() {
+        let input = MeshInput {
+            positions: vec![Vec3::ZERO, Vec3::X, Vec3::Y],
+            normals: vec![Vec3::Z, Vec3::new(1.0, 0.0, 1.0).normalize(), Vec3::Z],
+            uvs: vec![Vec2::ZERO, Vec2::new(1.0, 0.0), Vec2::new(0.0, 2.0)],
+            triangles: vec![[0, 1, 2]],
+            triangle_slots: vec![],
+        };
+        let (m, _) = Mesh::new(input).unwrap();
+        let h = m
+            .intersect(&Ray::new(Vec3A::new(0.5, 0.25, 1.0), Vec3A::NEG_Z), 10.0)
+            .unwrap();
+        assert!((h.bary - Vec2::new(0.5, 0.25)).length() < 1e-6);
+        let s = m.surface(&h);
+        assert!((s.uv - Vec2::new(0.5, 0.5)).length() < 1e-6);
+        let n = m.interpolated_normal(&h).unwrap();
+        assert!(n.x > 0.1 && n.z > 0.5 && (n.length() - 1.0).abs() < 1e-6);
+    }
+
+    #[test]
+    fn bad_input_is_refused_and_degenerate_triangles_dropped() {
+        let mut c = cube();
+        c.triangles.push([0, 1, 99]);
+        assert!(Mesh::new(c).unwrap_err().contains("vertex 99"));
+        let mut c = cube();
+        c.triangles.push([0, 1, 1]);
+        c.triangles.push([0, 1, 1]);
+        assert_eq!(Mesh::new(c).unwrap().1, 2);
+        let flat = MeshInput {
+            positions: vec![Vec3::ZERO, Vec3::X, Vec3::X * 2.0],
+            triangles: vec![[0, 1, 2]],
+            ..Default::default()
+        };
+        assert!(Mesh::new(flat).unwrap_err().contains("zero area"));
+    }
+
+    #[test]
+    fn area_weighted_normals_favour_big_triangles() {
+        // A big triangle facing +z and a small one facing +x share vertex 0.
+        let positions = vec![Vec3::ZERO, Vec3::X * 10.0, Vec3::Y * 10.0, Vec3::Y, Vec3::Z];
+        let n = area_weighted_normals(&positions, &[[0, 1, 2], [0, 3, 4]]);
+        assert!(n[0].z > 0.99 && n[0].x > 0.0, "{}", n[0]);
+        assert!((n[3] - Vec3::X).length() < 1e-6);
+    }
+}
