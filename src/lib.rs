@@ -23,6 +23,7 @@ pub mod integrator;
 pub mod light;
 pub mod material;
 pub mod math;
+pub mod mesh_file;
 pub mod output;
 pub mod render;
 pub mod scene;
