@@ -126,6 +126,13 @@ impl Bvh {
         bvh
     }
 
+    /// Bytes the hierarchy takes.
+    pub fn bytes(&self) -> usize {
+        self.nodes.len() * std::mem::size_of::<Node4>()
+            + self.leaves.len() * 8
+            + (self.order.len() + self.unbounded.len()) * 4
+    }
+
     /// Turns binary node `b` (and its subtree) into four-wide nodes; returns its reference.
     fn collapse(&mut self, binary: &[BinaryNode], b: usize) -> u32 {
         let node = &binary[b];
@@ -258,7 +265,7 @@ impl Bvh {
     ) -> bool {
         let mut found = false;
         self.traverse::<false>(ray, t_max, |i, limit| {
-            found = blocks(i) && objects[i].intersect(ray, *limit).is_some();
+            found = blocks(i) && objects[i].occluded(ray, *limit);
             if found { Err(()) } else { Ok(()) }
         });
         found

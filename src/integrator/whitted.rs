@@ -67,12 +67,19 @@ impl Whitted {
         depth: u32,
         medium: Option<Color>,
     ) -> Color {
-        let m = scene.material_of(hit.object);
+        let m = scene.material_at(hit);
         let d = ray.dir;
         // Entering or leaving is told by the normal: the outward normal faces the ray when
         // the ray comes from outside.
         let entering = d.dot(hit.normal) < 0.0;
         let n = if entering { hit.normal } else { -hit.normal };
+        // Shading (smooth meshes' interpolated normals) uses `ns`; which side a ray is on,
+        // and where new rays start, follow the true surface `n`.
+        let ns = if entering {
+            hit.shading_normal
+        } else {
+            -hit.shading_normal
+        };
         let base = scene.textures[m.texture].eval(&hit.tex);
         let above = offset_ray_origin(hit.point, n);
 
@@ -83,15 +90,15 @@ impl Whitted {
             let Some(ls) = light.sample(above) else {
                 continue;
             };
-            let cos = n.dot(ls.to_light);
-            if cos <= 0.0 {
+            let cos = ns.dot(ls.to_light);
+            if cos <= 0.0 || n.dot(ls.to_light) <= 0.0 {
                 continue;
             }
             // What this light would add if nothing were in the way: diffuse (weighed by the
             // opaque part) and the Phong highlight.
             let mut direct = base * (m.diffuse * cos * (1.0 - t));
             if m.specular != Color::ZERO {
-                let r = reflect(-ls.to_light, n);
+                let r = reflect(-ls.to_light, ns);
                 direct += m.specular * r.dot(view).max(0.0).powf(m.shininess);
             }
             // A shadow ray cannot change what is too faint to see (clear glass away from its
@@ -107,11 +114,16 @@ impl Whitted {
         let mut reflect_weight = (1.0 - t) * m.reflectivity;
         if t > 0.0 {
             let eta = if entering { 1.0 / m.ior } else { m.ior };
-            let cos_i = view.dot(n);
+            let cos_i = view.dot(ns);
             let fresnel = fresnel_dielectric(cos_i, eta);
             reflect_weight += t * fresnel;
+            // A shading normal can bend a ray back out of the surface; the true normal
+            // cannot.
+            let refracted = refract(d, ns, eta)
+                .filter(|r| r.dot(n) < 0.0)
+                .or_else(|| refract(d, n, eta));
             if fresnel < 1.0
-                && let Some(dir) = refract(d, n, eta)
+                && let Some(dir) = refracted
             {
                 let below = offset_ray_origin(hit.point, -n);
                 // Inside a solid there is absorption (maybe none) and never fog.
@@ -126,7 +138,11 @@ impl Whitted {
             }
         }
         if reflect_weight > 0.0 {
-            let r = Ray::new(above, reflect(d, n).normalize());
+            let mut dir = reflect(d, ns);
+            if dir.dot(n) <= 0.0 {
+                dir = reflect(d, n);
+            }
+            let r = Ray::new(above, dir.normalize());
             out += self.trace_from(scene, &r, hit.point, depth + 1, medium) * reflect_weight;
         }
         out
@@ -153,7 +169,7 @@ impl Whitted {
             let Some(h) = scene.closest_transparent_hit(&ray, remaining) else {
                 return visible;
             };
-            let m = scene.material_of(h.object);
+            let m = scene.material_at(&h);
             let entering = dir.dot(h.normal) < 0.0;
             let n = if entering { h.normal } else { -h.normal };
             // A shadow ray goes straight through instead of bending, so its way out is not the

@@ -3,7 +3,8 @@
 
 use super::diag::{DocPath, Format, Problem, SceneError, did_you_mean, offset_of};
 use super::format::*;
-use super::{Fog, Object, RenderSettings, Scene};
+use super::meshes::{LoadedMesh, MeshCache, Palette};
+use super::{BuildStats, Fog, Object, RenderSettings, Scene};
 use crate::accel::Bvh;
 use crate::camera::Camera;
 use crate::film::Filter;
@@ -56,6 +57,8 @@ pub fn load_str(
         problems: vec![],
         warnings: vec![],
         base_dir,
+        mesh_cache: Default::default(),
+        stats: Default::default(),
     };
     let scene = b.scene(def);
     if b.problems.is_empty() {
@@ -305,20 +308,28 @@ fn backticked(s: &str) -> Vec<String> {
 
 /// Largest magnitude of any number in a scene: its square (1e30) still fits in an `f32`, so
 /// lengths, areas and quadratics cannot overflow.
-const MAX_MAGNITUDE: f32 = 1e15;
+pub(super) const MAX_MAGNITUDE: f32 = 1e15;
 
-struct Builder<'a> {
+pub(super) struct Builder<'a> {
     problems: Vec<Problem>,
-    warnings: Vec<String>,
-    base_dir: &'a Path,
+    pub(super) warnings: Vec<String>,
+    pub(super) base_dir: &'a Path,
+    /// Meshes loaded so far, by file and normals option (`None` where loading failed).
+    pub(super) mesh_cache: MeshCache,
+    pub(super) stats: BuildStats,
 }
 
 impl Builder<'_> {
-    fn error(&mut self, path: DocPath, msg: impl Into<String>) {
+    pub(super) fn error(&mut self, path: DocPath, msg: impl Into<String>) {
         self.problems.push(Problem::new(path, msg));
     }
 
-    fn error_help(&mut self, path: DocPath, msg: impl Into<String>, help: impl Into<String>) {
+    pub(super) fn error_help(
+        &mut self,
+        path: DocPath,
+        msg: impl Into<String>,
+        help: impl Into<String>,
+    ) {
         self.problems.push(Problem::new(path, msg).help(help));
     }
 
@@ -513,12 +524,38 @@ impl Builder<'_> {
             .collect();
 
         let mut used_materials = vec![false; materials.len()];
+        let user_materials = materials.len();
+        let mut palette = Palette {
+            materials: &mut materials,
+            names: &mut material_names,
+            textures: &mut textures,
+        };
+        let named_meshes = self.named_meshes(&def.meshes, &root.key("meshes"), &mut palette);
+        let mut used_meshes = vec![false; named_meshes.len()];
         let mut objects = vec![];
         for (i, o) in def.objects.iter().enumerate() {
             let path = root.key("objects").index(i);
-            if let Some(obj) = self.object(o, i, &path, &material_names) {
-                used_materials[obj.material] = true;
+            let mesh = match o {
+                ObjectDef::Mesh(m) => {
+                    match self.mesh_object(m, &path, &named_meshes, &mut used_meshes, &mut palette)
+                    {
+                        Some(m) => Some(m),
+                        None => continue,
+                    }
+                }
+                _ => None,
+            };
+            if let Some(obj) = self.object(o, i, &path, &palette.names[..user_materials], mesh) {
+                if obj.slot_materials.is_empty() {
+                    used_materials[obj.material] = true;
+                }
                 objects.push(obj);
+            }
+        }
+        for ((name, _), used) in named_meshes.iter().zip(&used_meshes) {
+            if !used {
+                self.warnings
+                    .push(format!("mesh `{name}` is defined but no object places it"));
             }
         }
         for (name, used) in material_names.iter().zip(&used_materials) {
@@ -550,17 +587,36 @@ impl Builder<'_> {
             }
         }
 
+        let start = std::time::Instant::now();
         let accel = Bvh::build(&objects);
+        self.stats.object_bvh_time = start.elapsed();
+        self.stats.record_objects(&objects);
+        self.stats.bvh_bytes += accel.bytes();
+        // An object with several materials (a mesh with an MTL file) counts as transparent,
+        // or as reading uv, when any of them does.
+        let materials_of = |o: &Object| -> Vec<usize> {
+            if o.slot_materials.is_empty() {
+                vec![o.material]
+            } else {
+                o.slot_materials.clone()
+            }
+        };
         let transparent: Vec<bool> = objects
             .iter()
-            .map(|o| materials[o.material].is_transparent())
+            .map(|o| {
+                materials_of(o)
+                    .iter()
+                    .any(|&m| materials[m].is_transparent())
+            })
             .collect();
         let transparent_objects = (0..objects.len()).filter(|&i| transparent[i]).collect();
         let needs_uv = objects
             .iter()
             .map(|o| {
-                let t = &textures[materials[o.material].texture];
-                !matches!(t.pattern, Pattern::Solid(_)) && matches!(t.mapping, Mapping::Uv)
+                materials_of(o).iter().any(|&m| {
+                    let t = &textures[materials[m].texture];
+                    !matches!(t.pattern, Pattern::Solid(_)) && matches!(t.mapping, Mapping::Uv)
+                })
             })
             .collect();
         Scene {
@@ -580,6 +636,7 @@ impl Builder<'_> {
             transparent,
             transparent_objects,
             needs_uv,
+            stats: std::mem::take(&mut self.stats),
         }
     }
 
@@ -906,30 +963,58 @@ impl Builder<'_> {
         index: usize,
         path: &DocPath,
         material_names: &[String],
+        mesh: Option<LoadedMesh>,
     ) -> Option<Object> {
         let (name, material, transform) = d.common();
-        let material = match material_names.iter().position(|m| m == material) {
-            Some(i) => Some(i),
-            None => {
-                let help = match did_you_mean(material, material_names.iter().map(String::as_str)) {
-                    Some(s) => format!("did you mean `{s}`?"),
-                    None if material_names.is_empty() => {
-                        "define it under [materials.NAME]".to_string()
-                    }
-                    None => format!("defined materials: {}", material_names.join(", ")),
-                };
+        let mut slot_materials = vec![];
+        let material = match (material, &mesh) {
+            (None, Some(m)) if !m.slot_materials.is_empty() => {
+                slot_materials = m.slot_materials.clone();
+                Some(slot_materials[0])
+            }
+            (None, Some(_)) => {
                 self.error_help(
-                    path.key("material"),
-                    format!("no material named `{material}`"),
-                    help,
+                    path.clone(),
+                    "the mesh file names no materials, so the object needs a `material`",
+                    "add material = \"NAME\", or give the OBJ file an MTL file with `mtllib`",
                 );
                 None
             }
+            (None, None) => {
+                self.error_help(
+                    path.clone(),
+                    "the object has no `material`",
+                    "add material = \"NAME\" naming one of [materials]",
+                );
+                None
+            }
+            (Some(material), _) => match material_names.iter().position(|m| m == material) {
+                Some(i) => Some(i),
+                None => {
+                    let help =
+                        match did_you_mean(material, material_names.iter().map(String::as_str)) {
+                            Some(s) => format!("did you mean `{s}`?"),
+                            None if material_names.is_empty() => {
+                                "define it under [materials.NAME]".to_string()
+                            }
+                            None => format!("defined materials: {}", material_names.join(", ")),
+                        };
+                    self.error_help(
+                        path.key("material"),
+                        format!("no material named `{material}`"),
+                        help,
+                    );
+                    None
+                }
+            },
         };
         let transform = transform
             .as_ref()
             .and_then(|t| self.transform(t, &path.key("transform")));
-        let shape = self.shape(d, path)?;
+        let shape = match mesh {
+            Some(m) => Shape::Mesh(m.mesh),
+            None => self.shape(d, path)?,
+        };
         let name = name
             .clone()
             .unwrap_or_else(|| format!("{} #{index}", shape.kind()));
@@ -944,6 +1029,7 @@ impl Builder<'_> {
             shape,
             transform,
             material: material?,
+            slot_materials,
             world_bounds,
         })
     }
@@ -1034,6 +1120,8 @@ impl Builder<'_> {
                     }
                 }
             }
+            // Meshes are resolved (loaded or found in the cache) before this is called.
+            ObjectDef::Mesh(_) => return None,
         };
         (self.problems.len() == before).then_some(shape)
     }

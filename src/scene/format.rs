@@ -33,9 +33,23 @@ pub struct SceneFile {
     /// Light sources.
     #[serde(default)]
     pub lights: Vec<LightDef>,
+    /// Meshes defined once and placed by objects of type `mesh` (instancing).
+    #[serde(default)]
+    pub meshes: BTreeMap<String, MeshDef>,
     /// Shapes.
     #[serde(default)]
     pub objects: Vec<ObjectDef>,
+}
+
+/// `[meshes.NAME]`: a mesh file, loaded once however many objects place it.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MeshDef {
+    /// OBJ or PLY file, relative to the scene file.
+    pub file: String,
+    /// Vertex normals: `true` computes area-weighted ones when the file has none, `false`
+    /// ignores the file's (flat shading); by default the file's are used when it has them.
+    pub smooth: Option<bool>,
 }
 
 /// `[image]`.
@@ -372,8 +386,8 @@ macro_rules! object_defs {
             pub struct $name {
                 /// Name shown in messages (default: the type and index).
                 pub name: Option<String>,
-                /// Name of the material.
-                pub material: String,
+                /// Name of the material (meshes may take theirs from their MTL file).
+                pub material: Option<String>,
                 /// Placement.
                 pub transform: Option<TransformDef>,
                 $( $(#[$fdoc])* $(#[serde(default = $default)])? pub $field: $ty, )*
@@ -382,7 +396,7 @@ macro_rules! object_defs {
 
         impl ObjectDef {
             /// The fields every object has: name, material, transform.
-            pub fn common(&self) -> (&Option<String>, &String, &Option<TransformDef>) {
+            pub fn common(&self) -> (&Option<String>, &Option<String>, &Option<TransformDef>) {
                 match self {
                     $( ObjectDef::$variant(o) => (&o.name, &o.material, &o.transform), )*
                 }
@@ -463,6 +477,15 @@ object_defs! {
     Triangle(TriangleDef) {
         /// The three corners.
         vertices: [V3; 3],
+    }
+    /// A triangle mesh: a file, or a mesh defined under `[meshes]`.
+    Mesh(MeshObjectDef) {
+        /// OBJ or PLY file, relative to the scene file.
+        file: Option<String>,
+        /// Name of a mesh under `[meshes]` (instead of `file`).
+        mesh: Option<String>,
+        /// As `smooth` under `[meshes]` (only with `file`).
+        smooth: Option<bool>,
     }
 }
 

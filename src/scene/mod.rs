@@ -4,6 +4,7 @@
 mod build;
 mod diag;
 pub mod format;
+mod meshes;
 
 pub use build::{load, load_str};
 pub use diag::{DocPath, Format, Problem, SceneDiagnostic, SceneError, Seg, did_you_mean};
@@ -142,6 +143,48 @@ impl Fog {
     }
 }
 
+/// What building a scene cost, for `snell render --stats`.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct BuildStats {
+    /// Time reading mesh files.
+    pub mesh_load_time: std::time::Duration,
+    /// Time building the meshes' BVHs.
+    pub mesh_bvh_time: std::time::Duration,
+    /// Time building the BVH over the objects.
+    pub object_bvh_time: std::time::Duration,
+    /// Objects in the scene (each placement of a mesh counts once).
+    pub objects: usize,
+    /// Distinct meshes (shared by their placements).
+    pub meshes: usize,
+    /// Triangles in the distinct meshes.
+    pub unique_triangles: usize,
+    /// Triangles in the scene, every placement counted.
+    pub instanced_triangles: usize,
+    /// Bytes of all BVHs: the meshes' and the objects'.
+    pub bvh_bytes: usize,
+    /// Bytes of the distinct meshes' triangles, normals and uvs.
+    pub mesh_bytes: usize,
+}
+
+impl BuildStats {
+    /// Counts objects, meshes and triangles.
+    pub(crate) fn record_objects(&mut self, objects: &[Object]) {
+        let mut seen = std::collections::HashSet::new();
+        self.objects = objects.len();
+        for o in objects {
+            if let Shape::Mesh(m) = &o.shape {
+                self.instanced_triangles += m.triangle_count();
+                if seen.insert(std::sync::Arc::as_ptr(m)) {
+                    self.meshes += 1;
+                    self.unique_triangles += m.triangle_count();
+                    self.bvh_bytes += m.bvh_bytes();
+                    self.mesh_bytes += m.geometry_bytes();
+                }
+            }
+        }
+    }
+}
+
 /// A shape placed in the scene with its material.
 #[derive(Clone, Debug)]
 pub struct Object {
@@ -153,6 +196,9 @@ pub struct Object {
     pub transform: Option<Transform>,
     /// Index into `Scene::materials`.
     pub material: usize,
+    /// For meshes with materials of their own (from an MTL file): the scene material of each
+    /// of the mesh's slots. Empty when `material` covers the whole object.
+    pub slot_materials: Vec<usize>,
     /// Bounds in world space; `None` when unbounded.
     pub world_bounds: Option<Aabb>,
     /// Centre of the object-space bounds (the default centre of spherical mappings).
@@ -166,6 +212,28 @@ impl Object {
         match &self.transform {
             None => self.shape.intersect(ray, t_max),
             Some(t) => self.shape.intersect(&t.ray_to_object(ray), t_max),
+        }
+    }
+
+    /// Whether anything of the object is hit by a world ray in `(0, t_max)`.
+    #[inline]
+    pub fn occluded(&self, ray: &Ray, t_max: f32) -> bool {
+        match &self.transform {
+            None => self.shape.occluded(ray, t_max),
+            Some(t) => self.shape.occluded(&t.ray_to_object(ray), t_max),
+        }
+    }
+
+    /// The material (index into `Scene::materials`) at a hit on this object.
+    #[inline]
+    pub fn material_at(&self, hit: &ShapeHit) -> usize {
+        match &self.shape {
+            Shape::Mesh(m) if !self.slot_materials.is_empty() => self
+                .slot_materials
+                .get(m.slot(hit.prim) as usize)
+                .copied()
+                .unwrap_or(self.material),
+            _ => self.material,
         }
     }
 
@@ -185,8 +253,13 @@ pub struct Hit {
     pub point: Vec3A,
     /// Unit geometric normal, world space, pointing out of the solid (front side).
     pub normal: Vec3A,
+    /// Unit shading normal, world space, on the same side as `normal`: the interpolated
+    /// vertex normal of a smooth mesh, `normal` itself for every other shape.
+    pub shading_normal: Vec3A,
     /// Index of the object hit.
     pub object: usize,
+    /// Index of the material at the hit (objects with one material: theirs).
+    pub material: usize,
     /// What textures need, in object space.
     pub tex: TexturePoint,
 }
@@ -218,6 +291,8 @@ pub struct Scene {
     pub lights: Vec<Light>,
     /// Things that are allowed but probably not meant.
     pub warnings: Vec<String>,
+    /// What building the scene cost.
+    pub stats: BuildStats,
     accel: Bvh,
     /// Per object: whether its material is transparent.
     transparent: Vec<bool>,
@@ -235,6 +310,13 @@ impl Scene {
         Some(self.hit_details(ray, i, h))
     }
 
+    /// Closest hit in `(0, t_max)` without its surface details: the object's index and the
+    /// shape's hit (what a ray query alone returns, for benchmarks and tools).
+    #[inline]
+    pub fn intersect(&self, ray: &Ray, t_max: f32) -> Option<(usize, ShapeHit)> {
+        self.accel.closest_hit(&self.objects, ray, t_max)
+    }
+
     /// Closest hit in `(0, t_max)` among the transparent objects only.
     #[inline]
     pub fn closest_transparent_hit(&self, ray: &Ray, t_max: f32) -> Option<Hit> {
@@ -250,30 +332,23 @@ impl Scene {
     fn hit_details(&self, ray: &Ray, i: usize, h: ShapeHit) -> Hit {
         let o = &self.objects[i];
         let want_uv = self.needs_uv[i];
-        let (point, normal, tex) = match &o.transform {
-            None => {
-                let s = o.shape.surface(ray.at(h.t), h.part, want_uv);
-                (
-                    s.point,
-                    s.normal,
-                    TexturePoint {
-                        point: s.point,
-                        uv: s.uv,
-                        center: o.center,
-                    },
-                )
-            }
+        let local = match &o.transform {
+            None => *ray,
+            Some(t) => t.ray_to_object(ray),
+        };
+        let s = o.shape.surface(local.at(h.t), &h, want_uv);
+        let shading = match &o.shape {
+            Shape::Mesh(m) => m.interpolated_normal(&h),
+            _ => None,
+        };
+        let (point, normal, shading_normal) = match &o.transform {
+            None => (s.point, s.normal, shading.unwrap_or(s.normal)),
             Some(t) => {
-                let local = t.ray_to_object(ray);
-                let s = o.shape.surface(local.at(h.t), h.part, want_uv);
+                let n = t.normal_to_world(s.normal);
                 (
                     t.point_to_world(s.point),
-                    t.normal_to_world(s.normal),
-                    TexturePoint {
-                        point: s.point,
-                        uv: s.uv,
-                        center: o.center,
-                    },
+                    n,
+                    shading.map_or(n, |sn| t.normal_to_world(sn)),
                 )
             }
         };
@@ -281,8 +356,14 @@ impl Scene {
             t: h.t,
             point,
             normal,
+            shading_normal,
             object: i,
-            tex,
+            material: o.material_at(&h),
+            tex: TexturePoint {
+                point: s.point,
+                uv: s.uv,
+                center: o.center,
+            },
         }
     }
 
@@ -298,10 +379,10 @@ impl Scene {
         !self.transparent_objects.is_empty()
     }
 
-    /// The material of object `i`.
+    /// The material at a hit.
     #[inline]
-    pub fn material_of(&self, i: usize) -> &Material {
-        &self.materials[self.objects[i].material]
+    pub fn material_at(&self, hit: &Hit) -> &Material {
+        &self.materials[hit.material]
     }
 
     /// A short human summary: counts of objects by type, lights, textures, materials.

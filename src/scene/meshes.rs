@@ -1,0 +1,289 @@
+//! Meshes in a scene: `[meshes.NAME]` and objects of type `mesh`. Each file is read and its
+//! BVH built once, however many objects place it (instancing); its MTL materials become scene
+//! materials.
+
+use super::build::Builder;
+use super::diag::{DocPath, did_you_mean};
+use super::format::{MeshDef, MeshObjectDef};
+use crate::geometry::Mesh;
+use crate::geometry::mesh::{MeshInput, area_weighted_normals};
+use crate::material::Material;
+use crate::math::{Color, Vec2, Vec3};
+use crate::mesh_file::{self, MeshData, MtlMaterial};
+use crate::texture::{ColorSpace, ImageData, Mapping, Pattern, Texture};
+use std::collections::{BTreeMap, HashMap};
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+use std::time::Instant;
+
+/// A mesh ready to be placed: its shared geometry and the scene materials of its slots.
+#[derive(Clone, Debug)]
+pub(super) struct LoadedMesh {
+    pub mesh: Arc<Mesh>,
+    /// Scene material of each of the file's materials (empty when it has none).
+    pub slot_materials: Vec<usize>,
+}
+
+/// Loaded meshes by (file, normals option); `None` where loading failed (reported once).
+pub(super) type MeshCache = HashMap<(PathBuf, Option<bool>), Option<LoadedMesh>>;
+
+/// The scene's materials and textures while they are being built, so meshes can add theirs.
+pub(super) struct Palette<'a> {
+    pub materials: &'a mut Vec<Material>,
+    pub names: &'a mut Vec<String>,
+    pub textures: &'a mut Vec<Texture>,
+}
+
+impl Builder<'_> {
+    /// Loads every `[meshes.NAME]`.
+    pub(super) fn named_meshes(
+        &mut self,
+        defs: &BTreeMap<String, MeshDef>,
+        path: &DocPath,
+        palette: &mut Palette,
+    ) -> Vec<(String, Option<LoadedMesh>)> {
+        defs.iter()
+            .map(|(name, d)| {
+                let m = self.load_mesh(&d.file, d.smooth, &path.key(name).key("file"), palette);
+                (name.clone(), m)
+            })
+            .collect()
+    }
+
+    /// The mesh an object of type `mesh` places: from its `file`, or a `[meshes]` name.
+    pub(super) fn mesh_object(
+        &mut self,
+        d: &MeshObjectDef,
+        path: &DocPath,
+        named: &[(String, Option<LoadedMesh>)],
+        used: &mut [bool],
+        palette: &mut Palette,
+    ) -> Option<LoadedMesh> {
+        match (&d.file, &d.mesh) {
+            (Some(_), Some(_)) => {
+                self.error_help(
+                    path.key("mesh"),
+                    "a mesh object takes `file` or `mesh`, not both",
+                    "use `mesh` to place a mesh defined under [meshes], `file` to read one directly",
+                );
+                None
+            }
+            (None, None) => {
+                self.error_help(
+                    path.clone(),
+                    "a mesh object needs `file` (an OBJ or PLY file) or `mesh` (a name from [meshes])",
+                    "add file = \"model.obj\"",
+                );
+                None
+            }
+            (Some(file), None) => self.load_mesh(file, d.smooth, &path.key("file"), palette),
+            (None, Some(name)) => {
+                if d.smooth.is_some() {
+                    self.error_help(
+                        path.key("smooth"),
+                        "`smooth` belongs to the mesh's definition when it is placed by name",
+                        format!("set it under [meshes.{name}]"),
+                    );
+                }
+                match named.iter().position(|(n, _)| n == name) {
+                    Some(i) => {
+                        used[i] = true;
+                        named[i].1.clone()
+                    }
+                    None => {
+                        let help = match did_you_mean(name, named.iter().map(|(n, _)| n.as_str())) {
+                            Some(s) => format!("did you mean `{s}`?"),
+                            None if named.is_empty() => {
+                                "define it under [meshes.NAME] with a `file`".to_string()
+                            }
+                            None => format!(
+                                "defined meshes: {}",
+                                named
+                                    .iter()
+                                    .map(|(n, _)| n.as_str())
+                                    .collect::<Vec<_>>()
+                                    .join(", ")
+                            ),
+                        };
+                        self.error_help(path.key("mesh"), format!("no mesh named `{name}`"), help);
+                        None
+                    }
+                }
+            }
+        }
+    }
+
+    /// Reads a mesh file (or finds it in the cache) and builds its BVH. Problems are reported
+    /// at `path` (the `file` key).
+    fn load_mesh(
+        &mut self,
+        file: &str,
+        smooth: Option<bool>,
+        path: &DocPath,
+        palette: &mut Palette,
+    ) -> Option<LoadedMesh> {
+        let full = self.base_dir.join(file);
+        let key = (
+            std::fs::canonicalize(&full).unwrap_or_else(|_| full.clone()),
+            smooth,
+        );
+        if let Some(cached) = self.mesh_cache.get(&key) {
+            return cached.clone();
+        }
+        let loaded = self.read_mesh(file, &full, smooth, path, palette);
+        self.mesh_cache.insert(key, loaded.clone());
+        loaded
+    }
+
+    fn read_mesh(
+        &mut self,
+        file: &str,
+        full: &Path,
+        smooth: Option<bool>,
+        path: &DocPath,
+        palette: &mut Palette,
+    ) -> Option<LoadedMesh> {
+        let start = Instant::now();
+        let data = match mesh_file::load(full) {
+            Ok(d) => d,
+            Err(e) => {
+                self.error_help(
+                    path.clone(),
+                    format!("cannot load mesh: {e}"),
+                    "paths are relative to the scene file's folder; OBJ (with MTL) and PLY are supported",
+                );
+                return None;
+            }
+        };
+        self.stats.mesh_load_time += start.elapsed();
+        for w in &data.warnings {
+            self.warnings.push(format!("{file}: {w}"));
+        }
+        let MeshData {
+            positions,
+            normals,
+            uvs,
+            triangles,
+            triangle_materials,
+            materials,
+            warnings: _,
+        } = data;
+        if materials.len() > u16::MAX as usize {
+            self.error(
+                path.clone(),
+                format!(
+                    "{file} uses {} materials; at most {} are supported",
+                    materials.len(),
+                    u16::MAX
+                ),
+            );
+            return None;
+        }
+        let positions: Vec<Vec3> = positions.into_iter().map(Vec3::from).collect();
+        if let Some(p) = positions
+            .iter()
+            .find(|p| p.abs().max_element() > super::build::MAX_MAGNITUDE)
+        {
+            self.error_help(
+                path.clone(),
+                format!("{file} has a vertex at {p}, beyond the 1e15 snell accepts"),
+                "scale the model down in the file, or use a transform",
+            );
+            return None;
+        }
+        let normals: Vec<Vec3> = match smooth {
+            Some(false) => vec![],
+            Some(true) if normals.is_empty() => area_weighted_normals(&positions, &triangles),
+            _ => normals.into_iter().map(Vec3::from).collect(),
+        };
+        let input = MeshInput {
+            positions,
+            normals,
+            uvs: uvs.into_iter().map(Vec2::from).collect(),
+            triangles,
+            triangle_slots: triangle_materials.iter().map(|&m| m as u16).collect(),
+        };
+        let (mesh, dropped) = match Mesh::new(input) {
+            Ok(m) => m,
+            Err(e) => {
+                self.error(path.clone(), format!("{file}: {e}"));
+                return None;
+            }
+        };
+        if dropped > 0 {
+            self.warnings.push(format!(
+                "{file}: skipped {dropped} triangles with zero area"
+            ));
+        }
+        self.stats.mesh_bvh_time += mesh.build_time;
+        let stem = Path::new(file)
+            .file_name()
+            .map_or(file.into(), |n| n.to_string_lossy());
+        let mut slot_materials = vec![];
+        for m in &materials {
+            let material = self.mtl_material(m, path, palette.textures);
+            slot_materials.push(palette.materials.len());
+            palette.materials.push(material);
+            palette.names.push(format!("{stem}:{}", m.name));
+        }
+        Some(LoadedMesh {
+            mesh: Arc::new(mesh),
+            slot_materials,
+        })
+    }
+
+    /// A material from an MTL file, as docs/scene-format.md describes: Kd (or map_Kd) is the
+    /// colour, Ks and Ns the highlight, `d` (or `Tr`) the opacity, Ni the index of
+    /// refraction, Tf the colour of glass, and illum 3 and 5 turn on mirror reflection.
+    fn mtl_material(
+        &mut self,
+        m: &MtlMaterial,
+        path: &DocPath,
+        textures: &mut Vec<Texture>,
+    ) -> Material {
+        let rgb = |c: [f32; 3]| Color::from(c).clamp(Color::ZERO, Color::splat(1e6));
+        let illum = m.illum.unwrap_or(2);
+        let mut transparency = (1.0 - m.d.unwrap_or(1.0)).clamp(0.0, 1.0);
+        if transparency == 0.0 && matches!(illum, 4 | 6 | 7 | 9) && m.tf.is_some() {
+            transparency = m.tf.map_or(0.0, |t| rgb(t).max_element().min(1.0));
+        }
+        let kd = m.kd.map_or(Color::splat(0.8), rgb);
+        let pattern = match &m.map_kd {
+            Some(file) => match ImageData::load(file, ColorSpace::Srgb) {
+                Ok(img) => Pattern::Image(Arc::new(img)),
+                Err(e) => {
+                    self.error_help(
+                        path.clone(),
+                        format!("material `{}`: cannot load map_Kd: {e}", m.name),
+                        "map_Kd paths are relative to the MTL file's folder",
+                    );
+                    Pattern::Solid(kd)
+                }
+            },
+            // Glass takes its colour from the transmission filter.
+            None if transparency > 0.0 => Pattern::Solid(m.tf.map_or(Color::ONE, rgb)),
+            None => Pattern::Solid(kd),
+        };
+        textures.push(Texture {
+            pattern,
+            mapping: Mapping::Uv,
+        });
+        let highlight = !matches!(illum, 0 | 1);
+        let ks = m.ks.map_or(Color::ZERO, rgb);
+        Material {
+            texture: textures.len() - 1,
+            ambient: 1.0,
+            diffuse: if illum == 0 { 0.0 } else { 1.0 },
+            specular: if highlight { ks } else { Color::ZERO },
+            shininess: m.ns.unwrap_or(10.0).clamp(0.0, 10_000.0),
+            reflectivity: if matches!(illum, 3 | 5) {
+                ks.max_element().clamp(0.0, 1.0)
+            } else {
+                0.0
+            },
+            transparency,
+            ior: m.ni.filter(|n| *n > 0.0 && n.is_finite()).unwrap_or(1.5),
+            absorption: Color::ZERO,
+        }
+    }
+}
