@@ -7,7 +7,7 @@
 //!
 //! ```no_run
 //! let scene = snell::scene::load(std::path::Path::new("scenes/seed.toml"))?;
-//! let image = snell::render::render(&scene, &snell::integrator::Whitted, None, &|_| {})?;
+//! let image = snell::render::render(&scene, &snell::integrator::Whitted, None, &|_| {})?.image;
 //! snell::output::write_image(&image, std::path::Path::new("seed.png"))?;
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```

@@ -74,6 +74,10 @@ struct RenderArgs {
     /// Print nothing but errors.
     #[arg(short, long)]
     quiet: bool,
+    /// After rendering, print what the scene cost to load and build (meshes, BVH memory)
+    /// and how many rays of each kind were traced, per second.
+    #[arg(long)]
+    stats: bool,
 }
 
 fn main() -> ExitCode {
@@ -135,10 +139,12 @@ fn usage_error(msg: &str, help: Option<&str>) -> ExitCode {
 }
 
 fn render(args: RenderArgs) -> ExitCode {
+    let load_start = Instant::now();
     let mut scene = match load(&args.scene) {
         Ok(s) => s,
         Err(code) => return code,
     };
+    let load_time = load_start.elapsed();
     let s = &mut scene.settings;
     if let Some(w) = args.width {
         s.width = w;
@@ -202,8 +208,9 @@ fn render(args: RenderArgs) -> ExitCode {
     };
     let start = Instant::now();
     let threads = args.threads.map(usize::from);
-    let image = match snell::render::render(&scene, &Whitted, threads, &|n| bar.set_position(n)) {
-        Ok(img) => img,
+    let rendered = match snell::render::render(&scene, &Whitted, threads, &|n| bar.set_position(n))
+    {
+        Ok(r) => r,
         Err(e) => {
             bar.abandon();
             eprintln!("error: {e}");
@@ -212,7 +219,7 @@ fn render(args: RenderArgs) -> ExitCode {
     };
     bar.finish_and_clear();
     let elapsed = start.elapsed().as_secs_f64();
-    if let Err(e) = pending.commit(&image) {
+    if let Err(e) = pending.commit(&rendered.image) {
         eprintln!("error: {e}");
         return ExitCode::from(1);
     }
@@ -225,5 +232,63 @@ fn render(args: RenderArgs) -> ExitCode {
             threads.unwrap_or_else(rayon::current_num_threads),
         );
     }
+    if args.stats {
+        print_stats(&scene.stats, load_time, &rendered.rays, elapsed);
+    }
     ExitCode::SUCCESS
+}
+
+/// The `--stats` report.
+fn print_stats(
+    s: &snell::scene::BuildStats,
+    load_time: std::time::Duration,
+    rays: &snell::integrator::RayStats,
+    render_secs: f64,
+) {
+    let ms = |d: std::time::Duration| d.as_secs_f64() * 1e3;
+    let mib = |b: usize| b as f64 / (1u64 << 20) as f64;
+    println!(
+        "scene:     {} objects; {} meshes, {} triangles ({} placed); loaded and built in {:.1} ms",
+        s.objects,
+        s.meshes,
+        s.unique_triangles,
+        s.instanced_triangles,
+        ms(load_time)
+    );
+    println!(
+        "build:     mesh files read in {:.1} ms, mesh BVHs built in {:.1} ms, object BVH in {:.2} ms",
+        ms(s.mesh_load_time),
+        ms(s.mesh_bvh_time),
+        ms(s.object_bvh_time)
+    );
+    let per_triangle = if s.unique_triangles > 0 {
+        format!(
+            " ({:.1} bytes per triangle)",
+            s.bvh_bytes as f64 / s.unique_triangles as f64
+        )
+    } else {
+        String::new()
+    };
+    println!(
+        "memory:    BVHs {:.2} MiB{per_triangle}, mesh data {:.2} MiB",
+        mib(s.bvh_bytes),
+        mib(s.mesh_bytes)
+    );
+    let rate = |n: u64| n as f64 / render_secs.max(1e-9) / 1e6;
+    println!(
+        "rays:      {:.2} M in {render_secs:.2} s: {:.2} M rays/s",
+        rays.total() as f64 / 1e6,
+        rate(rays.total())
+    );
+    for (kind, n) in [
+        ("camera", rays.camera),
+        ("secondary", rays.secondary),
+        ("shadow", rays.shadow),
+    ] {
+        println!(
+            "  {kind:<10} {:>8.2} M  {:>7.2} M/s of render time",
+            n as f64 / 1e6,
+            rate(n)
+        );
+    }
 }

@@ -2,7 +2,7 @@
 //! seeded from `(seed, x, y)`, so the result is the same bytes at any thread count.
 
 use crate::film::Image;
-use crate::integrator::Integrator;
+use crate::integrator::{Integrator, RayStats};
 use crate::math::{Color, Rng, hash_seed};
 use crate::scene::Scene;
 use rayon::prelude::*;
@@ -24,6 +24,15 @@ pub enum RenderError {
     },
 }
 
+/// A finished render.
+#[derive(Clone, Debug)]
+pub struct Rendered {
+    /// The picture.
+    pub image: Image,
+    /// The rays traced for it.
+    pub rays: RayStats,
+}
+
 /// Renders `scene` with its settings. `threads` = `None` uses every core. `progress` is
 /// called from the worker threads with the number of pixels finished so far.
 pub fn render(
@@ -31,7 +40,7 @@ pub fn render(
     integrator: &dyn Integrator,
     threads: Option<usize>,
     progress: &(dyn Fn(u64) + Sync),
-) -> Result<Image, RenderError> {
+) -> Result<Rendered, RenderError> {
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(threads.unwrap_or(0))
         .build()
@@ -50,7 +59,7 @@ pub fn render(
     let n = tiles_x * tiles_y;
     let step = scatter_step(n);
     let tile_of = |k: u32| ((k as u64 * step as u64) % n as u64) as u32;
-    let tiles: Vec<Vec<Color>> = pool.install(|| {
+    let tiles: Vec<(Vec<Color>, RayStats)> = pool.install(|| {
         (0..n)
             .into_par_iter()
             .map(|k| {
@@ -58,19 +67,22 @@ pub fn render(
                 let (x0, y0) = ((i % tiles_x) * TILE, (i / tiles_x) * TILE);
                 let (x1, y1) = ((x0 + TILE).min(w), (y0 + TILE).min(h));
                 let mut out = Vec::with_capacity(((x1 - x0) * (y1 - y0)) as usize);
+                let mut rays = RayStats::default();
                 for y in y0..y1 {
                     for x in x0..x1 {
-                        out.push(render_pixel(scene, integrator, x, y));
+                        out.push(render_pixel(scene, integrator, x, y, &mut rays));
                     }
                 }
                 let n = done.fetch_add(out.len() as u64, Ordering::Relaxed) + out.len() as u64;
                 progress(n);
-                out
+                (out, rays)
             })
             .collect()
     });
     let mut image = Image::new(w, h);
-    for (k, tile) in tiles.into_iter().enumerate() {
+    let mut rays = RayStats::default();
+    for (k, (tile, tile_rays)) in tiles.into_iter().enumerate() {
+        rays += tile_rays;
         let i = tile_of(k as u32);
         let (x0, y0) = ((i % tiles_x) * TILE, (i / tiles_x) * TILE);
         let tw = (x0 + TILE).min(w) - x0;
@@ -79,7 +91,7 @@ pub fn render(
             image.pixels[(y * w + x) as usize] = c;
         }
     }
-    Ok(image)
+    Ok(Rendered { image, rays })
 }
 
 /// A step coprime with `n` near `n / phi`: `k * step mod n` then visits every index once,
@@ -97,11 +109,17 @@ fn scatter_step(n: u32) -> u32 {
 
 /// One pixel: `spp = n * n` samples, one jittered in each cell of an n x n grid, placed by
 /// the filter's distribution and averaged. One sample per pixel goes through the centre.
-pub fn render_pixel(scene: &Scene, integrator: &dyn Integrator, x: u32, y: u32) -> Color {
+pub fn render_pixel(
+    scene: &Scene,
+    integrator: &dyn Integrator,
+    x: u32,
+    y: u32,
+    rays: &mut RayStats,
+) -> Color {
     let s = &scene.settings;
     let (cx, cy) = (x as f32 + 0.5, y as f32 + 0.5);
-    let sample = |px: f32, py: f32| {
-        let c = integrator.radiance(scene, &scene.camera.ray(px, py, s.width, s.height));
+    let mut sample = |px: f32, py: f32| {
+        let c = integrator.radiance(scene, &scene.camera.ray(px, py, s.width, s.height), rays);
         // A non-finite sample would poison the whole pixel; drop it.
         if c.is_finite() { c } else { Color::ZERO }
     };

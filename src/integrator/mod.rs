@@ -10,6 +10,34 @@ use crate::scene::Scene;
 
 /// Computes the colour seen along a camera ray.
 pub trait Integrator: Sync {
-    /// Linear RGB arriving along `ray` (a camera ray, unit direction).
-    fn radiance(&self, scene: &Scene, ray: &Ray) -> Color;
+    /// Linear RGB arriving along `ray` (a camera ray, unit direction). Every ray traced for
+    /// it is counted in `rays`.
+    fn radiance(&self, scene: &Scene, ray: &Ray, rays: &mut RayStats) -> Color;
+}
+
+/// Rays traced, by kind (for `snell render --stats`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct RayStats {
+    /// Rays from the camera.
+    pub camera: u64,
+    /// Reflected and refracted rays.
+    pub secondary: u64,
+    /// Shadow rays (each query toward a light, and each further query past a transparent
+    /// surface, counts once).
+    pub shadow: u64,
+}
+
+impl RayStats {
+    /// All rays.
+    pub fn total(&self) -> u64 {
+        self.camera + self.secondary + self.shadow
+    }
+}
+
+impl std::ops::AddAssign for RayStats {
+    fn add_assign(&mut self, o: RayStats) {
+        self.camera += o.camera;
+        self.secondary += o.secondary;
+        self.shadow += o.shadow;
+    }
 }

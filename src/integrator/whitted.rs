@@ -3,7 +3,7 @@
 //! reflection, and refraction by Snell's law with exact Fresnel weights and total internal
 //! reflection, through solids of any shape, with Beer-Lambert absorption inside them.
 
-use super::Integrator;
+use super::{Integrator, RayStats};
 use crate::math::{Color, Ray, Vec3A, fresnel_dielectric, offset_ray_origin, reflect, refract};
 use crate::scene::{Hit, Scene};
 
@@ -20,8 +20,8 @@ const MAX_SHADOW_CROSSINGS: usize = 64;
 const MIN_RESPONSE: f32 = 1e-4;
 
 impl Integrator for Whitted {
-    fn radiance(&self, scene: &Scene, ray: &Ray) -> Color {
-        self.trace(scene, ray, 1, None)
+    fn radiance(&self, scene: &Scene, ray: &Ray, rays: &mut RayStats) -> Color {
+        self.trace(scene, ray, 1, None, rays)
     }
 }
 
@@ -29,8 +29,15 @@ impl Whitted {
     /// Colour along `ray`, which is the `depth`-th segment of its path (camera rays are 1).
     /// `medium` is the absorption coefficient of the solid the ray travels inside, `None`
     /// in open air (where fog applies instead).
-    pub fn trace(&self, scene: &Scene, ray: &Ray, depth: u32, medium: Option<Color>) -> Color {
-        self.trace_from(scene, ray, ray.origin, depth, medium)
+    pub fn trace(
+        &self,
+        scene: &Scene,
+        ray: &Ray,
+        depth: u32,
+        medium: Option<Color>,
+        rays: &mut RayStats,
+    ) -> Color {
+        self.trace_from(scene, ray, ray.origin, depth, medium, rays)
     }
 
     /// As [`Whitted::trace`], for a ray that really leaves from the surface point `from`
@@ -43,7 +50,13 @@ impl Whitted {
         from: Vec3A,
         depth: u32,
         medium: Option<Color>,
+        rays: &mut RayStats,
     ) -> Color {
+        if depth == 1 {
+            rays.camera += 1;
+        } else {
+            rays.secondary += 1;
+        }
         let Some(hit) = scene.closest_hit(ray, f32::INFINITY) else {
             return match (medium, scene.fog) {
                 (Some(sigma), _) if sigma != Color::ZERO => Color::ZERO,
@@ -51,7 +64,7 @@ impl Whitted {
                 _ => scene.background,
             };
         };
-        let c = self.shade(scene, ray, &hit, depth, medium);
+        let c = self.shade(scene, ray, &hit, depth, medium, rays);
         match (medium, scene.fog) {
             (Some(sigma), _) => c * beer_lambert(sigma, (hit.point - from).length()),
             (None, Some(fog)) => fog.apply(c, (hit.point - from).length()),
@@ -66,6 +79,7 @@ impl Whitted {
         hit: &Hit,
         depth: u32,
         medium: Option<Color>,
+        rays: &mut RayStats,
     ) -> Color {
         let m = scene.material_at(hit);
         let d = ray.dir;
@@ -106,7 +120,7 @@ impl Whitted {
             if direct.max_element() < MIN_RESPONSE {
                 continue;
             }
-            out += ls.radiance * direct * self.shadow(scene, above, ls.to_light, ls.distance);
+            out += ls.radiance * direct * self.shadow(scene, above, ls.to_light, ls.distance, rays);
         }
         if depth >= scene.settings.max_depth {
             return out;
@@ -132,8 +146,14 @@ impl Whitted {
                 } else {
                     (None, Color::ONE)
                 };
-                let transmitted =
-                    self.trace_from(scene, &Ray::new(below, dir), hit.point, depth + 1, inside);
+                let transmitted = self.trace_from(
+                    scene,
+                    &Ray::new(below, dir),
+                    hit.point,
+                    depth + 1,
+                    inside,
+                    rays,
+                );
                 out += transmitted * filter * (t * (1.0 - fresnel));
             }
         }
@@ -143,7 +163,7 @@ impl Whitted {
                 dir = reflect(d, n);
             }
             let r = Ray::new(above, dir.normalize());
-            out += self.trace_from(scene, &r, hit.point, depth + 1, medium) * reflect_weight;
+            out += self.trace_from(scene, &r, hit.point, depth + 1, medium, rays) * reflect_weight;
         }
         out
     }
@@ -152,8 +172,16 @@ impl Whitted {
     /// opaque object; behind transparent ones, the product over the surfaces crossed of
     /// `transparency * (1 - Fresnel)`, the surface colour where the ray enters a solid, and
     /// Beer-Lambert absorption over the length inside it.
-    pub fn shadow(&self, scene: &Scene, origin: Vec3A, dir: Vec3A, distance: f32) -> Color {
+    pub fn shadow(
+        &self,
+        scene: &Scene,
+        origin: Vec3A,
+        dir: Vec3A,
+        distance: f32,
+        rays: &mut RayStats,
+    ) -> Color {
         let ray = Ray::new(origin, dir);
+        rays.shadow += 1;
         if scene.opaque_blocked(&ray, distance) {
             return Color::ZERO;
         }
@@ -166,6 +194,7 @@ impl Whitted {
         // Where the ray went into the solid it is in (its start, if it starts inside).
         let mut entered_at = origin;
         for _ in 0..MAX_SHADOW_CROSSINGS {
+            rays.shadow += 1;
             let Some(h) = scene.closest_transparent_hit(&ray, remaining) else {
                 return visible;
             };

@@ -199,7 +199,11 @@ impl Builder<'_> {
         let input = MeshInput {
             positions,
             normals,
-            uvs: uvs.into_iter().map(Vec2::from).collect(),
+            // OBJ and PLY put v = 0 at the bottom of the image, snell at the top.
+            uvs: uvs
+                .into_iter()
+                .map(|[u, v]| Vec2::new(u, 1.0 - v))
+                .collect(),
             triangles,
             triangle_slots: triangle_materials.iter().map(|&m| m as u16).collect(),
         };

@@ -11,7 +11,9 @@ use snell::scene::load;
 fn render_file(path: &str, threads: usize, adjust: impl FnOnce(&mut snell::Scene)) -> Image {
     let mut scene = load(&repo(path)).unwrap_or_else(|e| panic!("{e}"));
     adjust(&mut scene);
-    render(&scene, &Whitted, Some(threads), &|_| {}).unwrap()
+    render(&scene, &Whitted, Some(threads), &|_| {})
+        .unwrap()
+        .image
 }
 
 /// The seed scene rendered square at `size` pixels and `spp` samples per pixel.

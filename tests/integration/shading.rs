@@ -2,7 +2,7 @@
 //! internal reflection, fog, transforms, thin shells; and a mutation test that no edit of a
 //! scene file makes the loader panic.
 
-use snell::integrator::{Integrator, Whitted};
+use snell::integrator::{Integrator, RayStats, Whitted};
 use snell::math::{Color, Ray, Vec3A};
 use snell::scene::{Format, load_str};
 use std::path::Path;
@@ -32,7 +32,13 @@ material = "floor"
 /// Light reaching the floor point straight below the light, past whatever stands between.
 fn light_at_origin(extra: &str) -> Color {
     let s = scene(&format!("{LIT_FLOOR}{extra}"));
-    Whitted.shadow(&s, Vec3A::new(0.0, 1e-4, 0.0), Vec3A::Y, 10.0)
+    Whitted.shadow(
+        &s,
+        Vec3A::new(0.0, 1e-4, 0.0),
+        Vec3A::Y,
+        10.0,
+        &mut RayStats::default(),
+    )
 }
 
 #[test]
@@ -111,7 +117,13 @@ material = "diamond"
         snell::math::refract(dir, -Vec3A::Y, 2.42).is_none(),
         "the first hit is past the critical angle"
     );
-    let c = Whitted.trace(&s, &Ray::new(Vec3A::new(-0.9, 0.5, 0.0), dir), 1, None);
+    let c = Whitted.trace(
+        &s,
+        &Ray::new(Vec3A::new(-0.9, 0.5, 0.0), dir),
+        1,
+        None,
+        &mut RayStats::default(),
+    );
     assert!(c.is_finite());
     // Most of the background's blue arrives (less what Fresnel reflects back at the exit).
     assert!(
@@ -127,7 +139,11 @@ fn fog_fades_distant_things_to_its_colour() {
     let s = scene(&text);
     let look = |z: f32| {
         // Straight down onto the floor from height h: distance h.
-        Whitted.radiance(&s, &Ray::new(Vec3A::new(0.5, z, 0.5), -Vec3A::Y))
+        Whitted.radiance(
+            &s,
+            &Ray::new(Vec3A::new(0.5, z, 0.5), -Vec3A::Y),
+            &mut RayStats::default(),
+        )
     };
     let near = look(5.0);
     let half = look(15.0);
@@ -148,7 +164,11 @@ fn fog_fades_distant_things_to_its_colour() {
         "{LIT_FLOOR}[fog]\nmode = \"exponential\"\ncolor = [1, 0, 0]\nstart = 2\ndensity = 0.1\n"
     );
     let s = scene(&text);
-    let seen = Whitted.radiance(&s, &Ray::new(Vec3A::new(0.5, 12.0, 0.5), -Vec3A::Y));
+    let seen = Whitted.radiance(
+        &s,
+        &Ray::new(Vec3A::new(0.5, 12.0, 0.5), -Vec3A::Y),
+        &mut RayStats::default(),
+    );
     let f = 1.0 - (-0.1f32 * 10.0).exp();
     let expected = near * (1.0 - f) + Color::new(f, 0.0, 0.0);
     assert!(
@@ -231,7 +251,13 @@ fn thin_shell_does_not_leak_light() {
                 .unwrap();
             let above = snell::math::offset_ray_origin(hit.point, hit.normal);
             let to_light = Vec3A::new(offset, 10.0, offset) - above;
-            let seen = Whitted.shadow(&s, above, to_light.normalize(), to_light.length());
+            let seen = Whitted.shadow(
+                &s,
+                above,
+                to_light.normalize(),
+                to_light.length(),
+                &mut RayStats::default(),
+            );
             assert_eq!(
                 seen,
                 Color::ZERO,
@@ -318,7 +344,13 @@ fn clear_pane_lit_at_an_angle_casts_a_light_shadow() {
         "{LIT_FLOOR}[materials.pane]\ncolor = 1\ntransparency = 1\nior = 1.5\n[[objects]]\ntype = \"box\"\nmin = [-5, 2, -5]\nmax = [5, 2.1, 5]\nmaterial = \"pane\"\n"
     ));
     let dir = Vec3A::new(1.0, 1.0, 0.0).normalize();
-    let seen = Whitted.shadow(&s, Vec3A::new(0.0, 1e-4, 0.0), dir, 100.0);
+    let seen = Whitted.shadow(
+        &s,
+        Vec3A::new(0.0, 1e-4, 0.0),
+        dir,
+        100.0,
+        &mut RayStats::default(),
+    );
     // Two crossings at 45 degrees into glass of index 1.5, about 95 % each.
     let one = 1.0 - snell::math::fresnel_dielectric(dir.y, 1.0 / 1.5);
     assert!(
@@ -336,7 +368,11 @@ fn thin_absorbing_pane_far_from_the_origin_is_crossed() {
             z - 0.05,
             z
         ));
-        let c = Whitted.radiance(&s, &Ray::new(Vec3A::new(0.0, 0.0, z + 5.0), -Vec3A::Z));
+        let c = Whitted.radiance(
+            &s,
+            &Ray::new(Vec3A::new(0.0, 0.0, z + 5.0), -Vec3A::Z),
+            &mut RayStats::default(),
+        );
         let expected = (-4.0f32 * 0.05).exp();
         assert!(
             (c.x - expected).abs() < 0.02,
@@ -376,7 +412,9 @@ material = "m"
 "#,
     );
     let range = |s: &snell::Scene| {
-        let img = snell::render::render(s, &Whitted, Some(2), &|_| {}).unwrap();
+        let img = snell::render::render(s, &Whitted, Some(2), &|_| {})
+            .unwrap()
+            .image;
         let lo = img
             .pixels
             .iter()
@@ -411,10 +449,18 @@ fn dim_lights_still_light_and_cast_shadows() {
     let text = format!("{LIT_FLOOR}[materials.ball]\ncolor = 1\n[[objects]]\ntype = \"sphere\"\ncenter = [3, 5, 0]\nradius = 1\nmaterial = \"ball\"\n")
         .replace("position = [0, 10, 0]", "position = [0, 10, 0]\nintensity = 1e-6");
     let s = scene(&text);
-    let lit = Whitted.radiance(&s, &Ray::new(Vec3A::new(0.0, 3.0, 0.0), -Vec3A::Y));
+    let lit = Whitted.radiance(
+        &s,
+        &Ray::new(Vec3A::new(0.0, 3.0, 0.0), -Vec3A::Y),
+        &mut RayStats::default(),
+    );
     assert!((lit.x - 1e-6).abs() < 1e-8, "{lit}");
     // Under the ball, as seen from the light, the floor is dark.
     let under = Vec3A::new(6.0, 0.0, 0.0);
-    let shadowed = Whitted.radiance(&s, &Ray::new(under + Vec3A::Y * 0.5, -Vec3A::Y));
+    let shadowed = Whitted.radiance(
+        &s,
+        &Ray::new(under + Vec3A::Y * 0.5, -Vec3A::Y),
+        &mut RayStats::default(),
+    );
     assert_eq!(shadowed, Color::ZERO);
 }
