@@ -237,19 +237,22 @@ impl Mesh {
         let mut state = self.bvh.new_traversal(ray.dir);
         let mut node;
         let mut hit = false;
-        obvhs::traverse!(
-            self.bvh,
-            node,
-            state,
-            nr.hits(node, t_max, state.oct_inv4),
-            {
-                let [a, b, c] = self.corners[state.primitive_id as usize];
-                if wt.intersect(a.into(), b.into(), c.into(), t_max).is_some() {
-                    hit = true;
-                    break;
+        // The macro's own loops would swallow a plain `break`.
+        'search: {
+            obvhs::traverse!(
+                self.bvh,
+                node,
+                state,
+                nr.hits(node, t_max, state.oct_inv4),
+                {
+                    let [a, b, c] = self.corners[state.primitive_id as usize];
+                    if wt.intersect(a.into(), b.into(), c.into(), t_max).is_some() {
+                        hit = true;
+                        break 'search;
+                    }
                 }
-            }
-        );
+            );
+        }
         hit
     }
 
