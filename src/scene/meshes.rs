@@ -159,6 +159,7 @@ impl Builder<'_> {
         for w in &data.warnings {
             self.warnings.push(format!("{file}: {w}"));
         }
+        let loader_notes = data.warnings.join("; ");
         let MeshData {
             positions,
             normals,
@@ -209,8 +210,12 @@ impl Builder<'_> {
         };
         let (mesh, dropped) = match Mesh::new(input) {
             Ok(m) => m,
-            Err(e) => {
+            Err(e) if loader_notes.is_empty() => {
                 self.error(path.clone(), format!("{file}: {e}"));
+                return None;
+            }
+            Err(e) => {
+                self.error(path.clone(), format!("{file}: {e} ({loader_notes})"));
                 return None;
             }
         };

@@ -3,6 +3,7 @@
 
 mod bad;
 mod cli;
+mod meshes;
 mod optics;
 mod renders;
 mod shading;

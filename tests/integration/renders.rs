@@ -44,11 +44,16 @@ fn assert_close_to_golden(actual: &[u8], golden: &[u8], what: &str) {
     );
 }
 
-#[test]
-fn golden_seed_scene() {
-    let img = seed_at(96, 4);
+/// Renders `scene` at `w` x `h` and `spp` and compares it with tests/golden/`name`.png
+/// (written instead when SNELL_BLESS is set).
+pub fn check_golden(scene: &str, name: &str, w: u32, h: u32, spp: u32) {
+    let img = render_file(scene, 2, |s| {
+        s.settings.width = w;
+        s.settings.height = h;
+        s.settings.spp = spp;
+    });
     let actual = to_srgb8(&img);
-    let golden_path = repo("tests/golden/seed-96.png");
+    let golden_path = repo(&format!("tests/golden/{name}.png"));
     if std::env::var_os("SNELL_BLESS").is_some() {
         snell::output::write_image(&img, &golden_path).unwrap();
         eprintln!("blessed {}", golden_path.display());
@@ -62,8 +67,26 @@ fn golden_seed_scene() {
             )
         })
         .into_rgb8();
-    assert_eq!((golden.width(), golden.height()), (96, 96));
-    assert_close_to_golden(&actual, golden.as_raw(), "seed scene at 96 x 96, 4 spp");
+    assert_eq!((golden.width(), golden.height()), (w, h));
+    assert_close_to_golden(
+        &actual,
+        golden.as_raw(),
+        &format!("{scene} at {w} x {h}, {spp} spp"),
+    );
+}
+
+#[test]
+fn golden_seed_scene() {
+    check_golden("scenes/seed.toml", "seed-96", 96, 96, 4);
+}
+
+#[test]
+fn golden_mesh_scenes() {
+    // A glass mesh (refraction through 69k smooth-shaded triangles), a uv-textured mesh, and
+    // 32 instances of two meshes.
+    check_golden("scenes/bunny.toml", "bunny-64", 64, 64, 4);
+    check_golden("scenes/spot.toml", "spot-96", 96, 72, 4);
+    check_golden("scenes/field.toml", "field-96", 96, 54, 4);
 }
 
 #[test]
