@@ -248,7 +248,7 @@ fn print_stats(
     let ms = |d: std::time::Duration| d.as_secs_f64() * 1e3;
     let mib = |b: usize| b as f64 / (1u64 << 20) as f64;
     println!(
-        "scene:     {} objects; {} meshes, {} triangles ({} placed); loaded and built in {:.1} ms",
+        "scene:     {} objects; {} mesh(es), {} triangles ({} placed); loaded and built in {:.1} ms",
         s.objects,
         s.meshes,
         s.unique_triangles,
