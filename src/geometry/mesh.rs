@@ -8,8 +8,7 @@ use crate::math::{Aabb, Ray, Vec2, Vec3, Vec3A};
 // obvhs's traversal macro names `UVec2` unqualified.
 use glam::UVec2;
 use glam::Vec4;
-use obvhs::cwbvh::CwBvh;
-use obvhs::cwbvh::node::{CwBvhNode, extract_byte64};
+use obvhs::cwbvh::node::CwBvhNode;
 use std::time::{Duration, Instant};
 
 /// Most triangles one mesh may have (indices are `u32`; the BVH needs about 16 bytes and
@@ -42,7 +41,7 @@ pub struct Mesh {
     uvs: Vec<Vec2>,
     /// Material slot of each triangle, in BVH order, or empty.
     slots: Vec<u16>,
-    bvh: CwBvh,
+    bvh: WideBvh,
     bounds: Aabb,
     /// Time spent building the BVH.
     pub build_time: Duration,
@@ -120,13 +119,14 @@ impl Mesh {
             });
         }
         let start = Instant::now();
-        let bvh = obvhs::cwbvh::builder::build_cwbvh(
+        let cw = obvhs::cwbvh::builder::build_cwbvh(
             &aabbs,
             obvhs::BvhBuildParams::medium_build(),
             &mut Duration::default(),
         );
+        let bvh = WideBvh::from_cwbvh(&cw);
         // Lay the triangles out in the order the BVH's leaves name them.
-        let order: Vec<usize> = bvh
+        let order: Vec<usize> = cw
             .primitive_indices
             .iter()
             .map(|&p| kept[p as usize])
@@ -173,8 +173,7 @@ impl Mesh {
 
     /// Bytes taken by the BVH itself (nodes and primitive indices).
     pub fn bvh_bytes(&self) -> usize {
-        self.bvh.nodes.len() * std::mem::size_of::<obvhs::cwbvh::node::CwBvhNode>()
-            + self.bvh.primitive_indices.len() * 4
+        self.bvh.nodes.len() * std::mem::size_of::<WideNode>()
     }
 
     /// Bytes taken by the triangles, normals, uvs and slots.
@@ -205,7 +204,7 @@ impl Mesh {
         let nr = NodeRay::new(ray);
         let mut t_max = t_max;
         let mut best = None;
-        let mut state = self.bvh.new_traversal(ray.dir);
+        let mut state = self.bvh.traversal(ray.dir);
         let mut node;
         obvhs::traverse!(
             self.bvh,
@@ -234,7 +233,7 @@ impl Mesh {
     pub fn occluded(&self, ray: &Ray, t_max: f32) -> bool {
         let wt = WatertightRay::new(ray);
         let nr = NodeRay::new(ray);
-        let mut state = self.bvh.new_traversal(ray.dir);
+        let mut state = self.bvh.traversal(ray.dir);
         let mut node;
         let mut hit = false;
         // The macro's own loops would swallow a plain `break`.
@@ -324,44 +323,128 @@ impl NodeRay {
     /// The traversal's hit mask for `node`: per child box met in `[0, t_max]`, its bits in
     /// obvhs's encoding (inner children in the high byte, leaf triangles in the low 24 bits).
     #[inline(always)]
-    fn hits(&self, node: &CwBvhNode, t_max: f32, oct_inv4: u32) -> u32 {
-        // Box corners are stored as bytes on a grid of `extent` steps from `node.p`.
-        let step = node.compute_extent() * self.inv_dir;
-        let start = (Vec3A::from(node.p) - self.origin) * self.inv_dir;
-        let (child_bits, bit_index) = node.get_child_and_index_bits(oct_inv4);
-        let quads = |lo: &[u8; 8], hi: &[u8; 8], axis: usize, half: usize| {
-            let q = |v: &[u8; 8]| {
-                Vec4::new(
-                    v[half * 4] as f32,
-                    v[half * 4 + 1] as f32,
-                    v[half * 4 + 2] as f32,
-                    v[half * 4 + 3] as f32,
-                )
-            };
-            let (near, far) = if self.negative[axis] {
-                (q(hi), q(lo))
-            } else {
-                (q(lo), q(hi))
-            };
-            let (s, o) = (Vec4::splat(step[axis]), Vec4::splat(start[axis]));
-            (near * s + o, far * s + o)
-        };
+    fn hits(&self, node: &WideNode, t_max: f32, oct_inv4: u32) -> u32 {
+        let (child_bits, bit_index) = node.child_and_index_bits(oct_inv4);
         let mut mask = 0u32;
         for half in 0..2 {
-            let (x0, x1) = quads(&node.child_min_x, &node.child_max_x, 0, half);
-            let (y0, y1) = quads(&node.child_min_y, &node.child_max_y, 1, half);
-            let (z0, z1) = quads(&node.child_min_z, &node.child_max_z, 2, half);
-            let near = x0.max(y0).max(z0).max(Vec4::ZERO);
-            let far = (x1.min(y1).min(z1) * SLACK).min(Vec4::splat(t_max));
+            let lanes = half * 4..half * 4 + 4;
+            let mut near = Vec4::ZERO;
+            let mut far = Vec4::splat(f32::INFINITY);
+            for axis in 0..3 {
+                let (n, f) = if self.negative[axis] {
+                    (&node.hi[axis], &node.lo[axis])
+                } else {
+                    (&node.lo[axis], &node.hi[axis])
+                };
+                let (o, inv) = (
+                    Vec4::splat(self.origin[axis]),
+                    Vec4::splat(self.inv_dir[axis]),
+                );
+                near = near.max((Vec4::from_slice(&n[lanes.clone()]) - o) * inv);
+                far = far.min((Vec4::from_slice(&f[lanes.clone()]) - o) * inv);
+            }
+            let far = (far * SLACK).min(Vec4::splat(t_max));
             let hit = near.cmple(far).bitmask();
             for lane in 0..4 {
                 if hit & (1 << lane) != 0 {
                     let child = half * 4 + lane;
-                    mask |= extract_byte64(child_bits, child) << extract_byte64(bit_index, child);
+                    mask |= byte(child_bits, child) << byte(bit_index, child);
                 }
             }
         }
         mask
+    }
+}
+
+/// Byte `i` of `x`.
+#[inline(always)]
+fn byte(x: u64, i: usize) -> u32 {
+    ((x >> (i * 8)) & 0xff) as u32
+}
+
+/// A node of the eight-wide BVH: obvhs's compressed node with its child boxes decoded to
+/// floats once, at build time (decoding eight quantised boxes per node visit cost more
+/// than reading the larger node). The field names are those obvhs's `traverse!` reads.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct WideNode {
+    /// Smallest corner of each child's box, per axis.
+    lo: [[f32; 8]; 3],
+    /// Largest corner of each child's box, per axis.
+    hi: [[f32; 8]; 3],
+    /// First inner child's node index.
+    child_base_idx: u32,
+    /// First triangle of the leaf children.
+    primitive_base_idx: u32,
+    /// Per child: leaf triangle count and offset, or the inner child's slot (obvhs's format).
+    child_meta: [u8; 8],
+    /// Which children are inner nodes.
+    imask: u8,
+}
+
+impl WideNode {
+    fn from_cw(n: &CwBvhNode) -> Self {
+        let mut lo = [[f32::INFINITY; 8]; 3];
+        let mut hi = [[f32::NEG_INFINITY; 8]; 3];
+        for child in 0..8 {
+            if n.is_child_empty(child) {
+                continue;
+            }
+            let b = n.child_aabb(child);
+            for axis in 0..3 {
+                lo[axis][child] = b.min[axis];
+                hi[axis][child] = b.max[axis];
+            }
+        }
+        WideNode {
+            lo,
+            hi,
+            child_base_idx: n.child_base_idx,
+            primitive_base_idx: n.primitive_base_idx,
+            child_meta: n.child_meta,
+            imask: n.imask,
+        }
+    }
+
+    /// Per child (one byte each): the bits it sets in the traversal's hit mask, and where.
+    /// Inner children set one bit in the high byte, at a slot ordered by the ray's octant;
+    /// leaves set one bit per triangle in the low 24 bits. This is the encoding of Ylitie et
+    /// al.'s compressed wide BVH, as obvhs stores it in `child_meta`.
+    #[inline(always)]
+    fn child_and_index_bits(&self, oct_inv4: u32) -> (u64, u64) {
+        const EACH_BYTE: u64 = 0x0101_0101_0101_0101;
+        let meta = u64::from_le_bytes(self.child_meta);
+        let octant = (oct_inv4 as u64) | ((oct_inv4 as u64) << 32);
+        // Inner children have meta 0b001_11xxx (slot 24..32): bits 3 and 4 both set.
+        let inner = (meta & (meta << 1)) & (EACH_BYTE << 4);
+        let inner_bytes = (inner >> 4) * 0xff;
+        let bit_index = (meta ^ (octant & inner_bytes)) & (EACH_BYTE * 0x1f);
+        let child_bits = (meta >> 5) & (EACH_BYTE * 0x07);
+        (child_bits, bit_index)
+    }
+}
+
+/// The eight-wide BVH of a mesh.
+#[derive(Clone, Debug, PartialEq, Default)]
+struct WideBvh {
+    nodes: Vec<WideNode>,
+}
+
+impl WideBvh {
+    fn from_cwbvh(cw: &obvhs::cwbvh::CwBvh) -> Self {
+        WideBvh {
+            nodes: cw.nodes.iter().map(WideNode::from_cw).collect(),
+        }
+    }
+
+    /// Traversal state for a ray going along `dir`.
+    #[inline(always)]
+    fn traversal(&self, dir: Vec3A) -> obvhs::cwbvh::Traversal {
+        let mut t = obvhs::cwbvh::Traversal::default();
+        t.reinit(dir);
+        if self.nodes.is_empty() {
+            t.current_group = UVec2::ZERO;
+        }
+        t
     }
 }
 
