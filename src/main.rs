@@ -4,6 +4,7 @@
 use clap::{Args, Parser, Subcommand};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use snell::integrator::Whitted;
+use snell::integrator::explain::TreeRecorder;
 use snell::output::{OutputError, PendingOutput};
 use snell::scene::{RenderSettings, SceneError};
 use std::io::IsTerminal;
@@ -20,6 +21,8 @@ Examples:
   snell render scenes/seed.toml --spp 16 --threads 1 --seed 7
                                                 4 x 4 anti-aliasing on one core, another jitter
   snell check scenes/seed.toml                  validate a scene and print a summary
+  snell explain scenes/seed.toml --pixel 512,760
+                                                the tree of rays behind one pixel
 
 Exit codes: 0 done, 1 rendering or writing failed, 2 bad command line or scene.
 The scene format is documented key by key in docs/scene-format.md.";
@@ -46,6 +49,10 @@ enum Command {
         /// The scene file (.toml or .json).
         scene: PathBuf,
     },
+    /// Explain one pixel: print the tree of rays behind one of its samples, with what each
+    /// ray hit, the material's terms, every light and its shadow ray, the Fresnel split and
+    /// the colour each ray returns.
+    Explain(ExplainArgs),
 }
 
 #[derive(Args, Debug)]
@@ -80,11 +87,52 @@ struct RenderArgs {
     stats: bool,
 }
 
+#[derive(Args, Debug)]
+struct ExplainArgs {
+    /// The scene file (.toml or .json).
+    scene: PathBuf,
+    /// The pixel: column and row from the top-left corner, from 0.
+    #[arg(long, value_name = "X,Y", value_parser = parse_pixel)]
+    pixel: (u32, u32),
+    /// Which of the pixel's samples, from 0 (in the order the renderer takes them) [default:
+    /// the ray through the pixel's centre].
+    #[arg(long, value_name = "K")]
+    sample: Option<u32>,
+    /// Image width in pixels (overrides the scene; pixel coordinates depend on it).
+    #[arg(long, value_name = "W")]
+    width: Option<u32>,
+    /// Image height in pixels (overrides the scene).
+    #[arg(long, value_name = "H")]
+    height: Option<u32>,
+    /// Samples per pixel (overrides the scene; `--sample` counts up to it).
+    #[arg(long, value_name = "N")]
+    spp: Option<u32>,
+    /// Print the tree as JSON, for tools.
+    #[arg(long)]
+    json: bool,
+    /// Most rays shown; the rest of a bigger tree is counted, and the cut is said.
+    #[arg(long, value_name = "N", default_value_t = 200)]
+    max_rays: usize,
+}
+
+fn parse_pixel(s: &str) -> Result<(u32, u32), String> {
+    let (x, y) = s
+        .split_once(',')
+        .ok_or_else(|| format!("`{s}` is not X,Y (for example 512,300)"))?;
+    let n = |v: &str| {
+        v.trim()
+            .parse::<u32>()
+            .map_err(|_| format!("`{v}` is not a pixel coordinate (a whole number from 0)"))
+    };
+    Ok((n(x)?, n(y)?))
+}
+
 fn main() -> ExitCode {
     let cli = Cli::parse();
     match cli.command {
         Command::Render(args) => render(args),
         Command::Check { scene } => check(&scene),
+        Command::Explain(args) => explain(args),
     }
 }
 
@@ -127,6 +175,111 @@ fn check(path: &Path) -> ExitCode {
         println!("warning: {w}");
     }
     println!("ok: {} is a valid scene", path.display());
+    ExitCode::SUCCESS
+}
+
+fn explain(args: ExplainArgs) -> ExitCode {
+    let mut scene = match load(&args.scene) {
+        Ok(s) => s,
+        Err(code) => return code,
+    };
+    let s = &mut scene.settings;
+    s.width = args.width.unwrap_or(s.width);
+    s.height = args.height.unwrap_or(s.height);
+    s.spp = args.spp.unwrap_or(s.spp);
+    for (what, v) in [("--width", s.width), ("--height", s.height)] {
+        if let Err(e) = RenderSettings::check_side(what, v) {
+            return usage_error(&e, None);
+        }
+    }
+    if let Err((e, help)) = RenderSettings::check_spp(s.spp) {
+        return usage_error(&e, help.as_deref());
+    }
+    let (x, y) = args.pixel;
+    if x >= s.width || y >= s.height {
+        return usage_error(
+            &format!(
+                "pixel {x},{y} is outside the {} x {} image",
+                s.width, s.height
+            ),
+            Some(&format!(
+                "columns go from 0 to {}, rows from 0 to {}",
+                s.width - 1,
+                s.height - 1
+            )),
+        );
+    }
+    let film = match args.sample {
+        None => (x as f32 + 0.5, y as f32 + 0.5),
+        Some(k) if k >= s.spp => {
+            return usage_error(
+                &format!("sample {k} does not exist: the pixel has {} samples", s.spp),
+                Some(&format!("use --sample 0 to {}, or --spp", s.spp - 1)),
+            );
+        }
+        Some(k) => {
+            let mut at = (0.0, 0.0);
+            let mut i = 0;
+            snell::render::for_each_sample(s, x, y, |px, py, _| {
+                if i == k {
+                    at = (px, py);
+                }
+                i += 1;
+            });
+            at
+        }
+    };
+    let ray = scene.camera.ray(film.0, film.1, s.width, s.height);
+    let mut rec = TreeRecorder::new(args.max_rays);
+    let mut rays = snell::integrator::RayStats::default();
+    let color = Whitted.explain(&scene, &ray, &mut rays, &mut rec);
+    let Some(tree) = rec.finish() else {
+        eprintln!("error: no ray was recorded");
+        return ExitCode::from(1);
+    };
+    let which = match args.sample {
+        None => "the ray through its centre".to_string(),
+        Some(k) => format!("sample {k} of {}", scene.settings.spp),
+    };
+    if args.json {
+        let doc = serde_json::json!({
+            "scene": args.scene.display().to_string(),
+            "image": [scene.settings.width, scene.settings.height],
+            "pixel": [x, y],
+            "sample": args.sample,
+            "film_position": [film.0, film.1],
+            "color": color.to_array(),
+            "rays_traced": { "camera": rays.camera, "secondary": rays.secondary, "shadow": rays.shadow },
+            "tree": tree,
+        });
+        match serde_json::to_string_pretty(&doc) {
+            Ok(text) => println!("{text}"),
+            Err(e) => {
+                eprintln!("error: {e}");
+                return ExitCode::from(1);
+            }
+        }
+    } else {
+        println!(
+            "pixel {x},{y} of {} ({} x {}), {which}, film position ({}, {}):",
+            args.scene.display(),
+            scene.settings.width,
+            scene.settings.height,
+            film.0,
+            film.1
+        );
+        print!("{}", tree.to_text());
+        println!(
+            "{} rays traced ({} camera, {} reflected or refracted, {} shadow); the sample's colour is ({}, {}, {}) in linear RGB",
+            rays.camera + rays.secondary + rays.shadow,
+            rays.camera,
+            rays.secondary,
+            rays.shadow,
+            color.x,
+            color.y,
+            color.z
+        );
+    }
     ExitCode::SUCCESS
 }
 

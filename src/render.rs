@@ -4,7 +4,7 @@
 use crate::film::Image;
 use crate::integrator::{Integrator, RayStats};
 use crate::math::{Color, Rng, hash_seed};
-use crate::scene::Scene;
+use crate::scene::{RenderSettings, Scene};
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicU64, Ordering};
 
@@ -107,8 +107,31 @@ fn scatter_step(n: u32) -> u32 {
     step
 }
 
-/// One pixel: `spp = n * n` samples, one jittered in each cell of an n x n grid, placed by
-/// the filter's distribution and averaged. One sample per pixel goes through the centre.
+/// The film positions of pixel `(x, y)`'s samples, in the order they are taken, each with
+/// the sign of its filter weight: `spp = n * n` samples, one jittered in each cell of an
+/// n x n grid and placed by the filter's distribution. One sample per pixel goes through the
+/// centre.
+#[inline]
+pub fn for_each_sample(s: &RenderSettings, x: u32, y: u32, mut f: impl FnMut(f32, f32, f32)) {
+    let (cx, cy) = (x as f32 + 0.5, y as f32 + 0.5);
+    if s.spp == 1 {
+        f(cx, cy, 1.0);
+        return;
+    }
+    let n = (s.spp as f32).sqrt().round() as u32;
+    let mut rng = Rng::new(hash_seed(&[s.seed, x as u64, y as u64]));
+    for j in 0..n {
+        for i in 0..n {
+            // Stratified in the filter's own distribution (filter importance sampling).
+            let (dx, sx) = s.filter.sample((i as f32 + rng.next_f32()) / n as f32);
+            let (dy, sy) = s.filter.sample((j as f32 + rng.next_f32()) / n as f32);
+            f(cx + dx, cy + dy, sx * sy);
+        }
+    }
+}
+
+/// One pixel: its samples (see [`for_each_sample`]) averaged with the signs of their filter
+/// weights.
 pub fn render_pixel(
     scene: &Scene,
     integrator: &dyn Integrator,
@@ -117,34 +140,20 @@ pub fn render_pixel(
     rays: &mut RayStats,
 ) -> Color {
     let s = &scene.settings;
-    let (cx, cy) = (x as f32 + 0.5, y as f32 + 0.5);
-    let mut sample = |px: f32, py: f32| {
+    let (mut sum, mut weight, mut unsigned) = (Color::ZERO, 0.0f32, Color::ZERO);
+    for_each_sample(s, x, y, |px, py, sign| {
         let c = integrator.radiance(scene, &scene.camera.ray(px, py, s.width, s.height), rays);
         // A non-finite sample would poison the whole pixel; drop it.
-        if c.is_finite() { c } else { Color::ZERO }
-    };
-    if s.spp == 1 {
-        return sample(cx, cy);
-    }
-    let n = (s.spp as f32).sqrt().round() as u32;
-    let mut rng = Rng::new(hash_seed(&[s.seed, x as u64, y as u64]));
-    let (mut sum, mut weight, mut unsigned) = (Color::ZERO, 0.0f32, Color::ZERO);
-    for j in 0..n {
-        for i in 0..n {
-            // Stratified in the filter's own distribution (filter importance sampling).
-            let (dx, sx) = s.filter.sample((i as f32 + rng.next_f32()) / n as f32);
-            let (dy, sy) = s.filter.sample((j as f32 + rng.next_f32()) / n as f32);
-            let c = sample(cx + dx, cy + dy);
-            sum += c * (sx * sy);
-            weight += sx * sy;
-            unsigned += c;
-        }
-    }
+        let c = if c.is_finite() { c } else { Color::ZERO };
+        sum += c * sign;
+        weight += sign;
+        unsigned += c;
+    });
     if weight > 0.0 {
         (sum / weight).max(Color::ZERO)
     } else {
         // Only possible when most samples fall in Mitchell's negative lobes.
-        unsigned / (n * n) as f32
+        unsigned / s.spp as f32
     }
 }
 

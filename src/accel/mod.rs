@@ -302,10 +302,27 @@ impl Bvh {
         t_max: f32,
         blocks: impl Fn(usize) -> bool,
     ) -> bool {
-        let mut found = false;
+        self.first_blocker(objects, ray, t_max, blocks).is_some()
+    }
+
+    /// The first object found (not necessarily the nearest) for which `blocks(i)` holds and
+    /// that the ray hits in `(0, t_max)`.
+    #[inline]
+    pub fn first_blocker(
+        &self,
+        objects: &[Object],
+        ray: &Ray,
+        t_max: f32,
+        blocks: impl Fn(usize) -> bool,
+    ) -> Option<usize> {
+        let mut found = None;
         self.traverse::<false>(ray, t_max, |i, limit| {
-            found = blocks(i) && objects[i].occluded(ray, *limit);
-            if found { Err(()) } else { Ok(()) }
+            if blocks(i) && objects[i].occluded(ray, *limit) {
+                found = Some(i);
+                Err(())
+            } else {
+                Ok(())
+            }
         });
         found
     }

@@ -1,6 +1,7 @@
 //! Ways of turning a camera ray into a colour. One file per integrator; they are chosen
 //! once per render, so a trait object is fine here.
 
+pub mod explain;
 mod whitted;
 
 pub use whitted::Whitted;
@@ -25,6 +26,8 @@ pub struct RayStats {
     /// Shadow rays (each query toward a light, and each further query past a transparent
     /// surface, counts once).
     pub shadow: u64,
+    /// The deepest segment reached (the camera ray is 1).
+    pub deepest: u32,
 }
 
 impl RayStats {
@@ -39,5 +42,6 @@ impl std::ops::AddAssign for RayStats {
         self.camera += o.camera;
         self.secondary += o.secondary;
         self.shadow += o.shadow;
+        self.deepest = self.deepest.max(o.deepest);
     }
 }

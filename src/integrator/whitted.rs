@@ -3,7 +3,12 @@
 //! reflection, and refraction by Snell's law with exact Fresnel weights and total internal
 //! reflection, through solids of any shape, with Beer-Lambert absorption inside them.
 
+use super::explain::{
+    Crossing, FresnelRecord, HitRecord, LightRecord, MaterialTerms, NoRecord, RayKind, Recorder,
+    ShadowRecord, uv2,
+};
 use super::{Integrator, RayStats};
+use crate::light::Light;
 use crate::math::{Color, Ray, Vec3A, fresnel_dielectric, offset_ray_origin, reflect, refract};
 use crate::scene::{Hit, Scene};
 
@@ -25,6 +30,18 @@ impl Integrator for Whitted {
     }
 }
 
+/// Where a ray is going and what it carries, for one call of the recursion.
+struct Segment {
+    kind: RayKind,
+    /// The surface point it really leaves from (its origin is offset off it).
+    from: Vec3A,
+    depth: u32,
+    /// Absorption coefficient of the solid it travels in; `None` in open air.
+    medium: Option<Color>,
+    /// What the parent multiplies its colour by (for the record).
+    weight: Color,
+}
+
 impl Whitted {
     /// Colour along `ray`, which is the `depth`-th segment of its path (camera rays are 1).
     /// `medium` is the absorption coefficient of the solid the ray travels inside, `None`
@@ -37,49 +54,112 @@ impl Whitted {
         medium: Option<Color>,
         rays: &mut RayStats,
     ) -> Color {
-        self.trace_from(scene, ray, ray.origin, depth, medium, rays)
+        let kind = if depth == 1 {
+            RayKind::Camera
+        } else {
+            RayKind::Reflection
+        };
+        let seg = Segment {
+            kind,
+            from: ray.origin,
+            depth,
+            medium,
+            weight: Color::ONE,
+        };
+        self.trace_from(scene, ray, &seg, rays, &mut NoRecord)
     }
 
-    /// As [`Whitted::trace`], for a ray that really leaves from the surface point `from`
-    /// (its origin is offset off the surface): absorption and fog are measured from there, so
-    /// the offset never shortens a path through thin glass.
-    fn trace_from(
+    /// The colour along a camera ray, reporting every ray of its tree to `rec`.
+    pub fn explain(
         &self,
         scene: &Scene,
         ray: &Ray,
-        from: Vec3A,
-        depth: u32,
-        medium: Option<Color>,
         rays: &mut RayStats,
+        rec: &mut impl Recorder,
     ) -> Color {
-        if depth == 1 {
+        let seg = Segment {
+            kind: RayKind::Camera,
+            from: ray.origin,
+            depth: 1,
+            medium: None,
+            weight: Color::ONE,
+        };
+        self.trace_from(scene, ray, &seg, rays, rec)
+    }
+
+    /// The colour along `ray`; absorption and fog are measured from `seg.from`, so the
+    /// origin's offset never shortens a path through thin glass.
+    fn trace_from<R: Recorder>(
+        &self,
+        scene: &Scene,
+        ray: &Ray,
+        seg: &Segment,
+        rays: &mut RayStats,
+        rec: &mut R,
+    ) -> Color {
+        if seg.depth == 1 {
             rays.camera += 1;
         } else {
             rays.secondary += 1;
         }
+        rays.deepest = rays.deepest.max(seg.depth);
+        rec.begin_ray(seg.kind, ray, seg.depth, seg.weight);
         let Some(hit) = scene.closest_hit(ray, f32::INFINITY) else {
-            return match (medium, scene.fog) {
-                (Some(sigma), _) if sigma != Color::ZERO => Color::ZERO,
-                (None, Some(fog)) => fog.apply(scene.background, f32::INFINITY),
-                _ => scene.background,
+            let c = match (seg.medium, scene.fog) {
+                (Some(sigma), _) if sigma != Color::ZERO => {
+                    if R::ACTIVE {
+                        rec.note("leaves the scene from inside an absorbing solid: black".into());
+                    }
+                    Color::ZERO
+                }
+                (None, Some(fog)) => {
+                    if R::ACTIVE {
+                        rec.note("sees the background through infinite fog".into());
+                    }
+                    fog.apply(scene.background, f32::INFINITY)
+                }
+                _ => {
+                    if R::ACTIVE {
+                        rec.note("sees the background".into());
+                    }
+                    scene.background
+                }
             };
+            rec.end_ray(c);
+            return c;
         };
-        let c = self.shade(scene, ray, &hit, depth, medium, rays);
-        match (medium, scene.fog) {
-            (Some(sigma), _) => c * beer_lambert(sigma, (hit.point - from).length()),
-            (None, Some(fog)) => fog.apply(c, (hit.point - from).length()),
+        let c = self.shade(scene, ray, &hit, seg, rays, rec);
+        let distance = (hit.point - seg.from).length();
+        let c = match (seg.medium, scene.fog) {
+            (Some(sigma), _) => {
+                let kept = beer_lambert(sigma, distance);
+                if R::ACTIVE && sigma != Color::ZERO {
+                    rec.note(format!(
+                        "absorption over {distance} inside: exp(-sigma d) = {kept}"
+                    ));
+                }
+                c * kept
+            }
+            (None, Some(fog)) => {
+                if R::ACTIVE {
+                    rec.note(format!("fog over {distance}"));
+                }
+                fog.apply(c, distance)
+            }
             (None, None) => c,
-        }
+        };
+        rec.end_ray(c);
+        c
     }
 
-    fn shade(
+    fn shade<R: Recorder>(
         &self,
         scene: &Scene,
         ray: &Ray,
         hit: &Hit,
-        depth: u32,
-        medium: Option<Color>,
+        seg: &Segment,
         rays: &mut RayStats,
+        rec: &mut R,
     ) -> Color {
         let m = scene.material_at(hit);
         let d = ray.dir;
@@ -96,33 +176,92 @@ impl Whitted {
         };
         let base = scene.textures[m.texture].eval(&hit.tex);
         let above = offset_ray_origin(hit.point, n);
+        if R::ACTIVE {
+            rec.hit(hit_record(scene, hit, entering, base));
+        }
 
         let t = m.transparency;
         let mut out = scene.ambient * base * (m.ambient * (1.0 - t));
+        if R::ACTIVE {
+            rec.ambient(out);
+        }
         let view = -d;
-        for light in &scene.lights {
+        for (index, light) in scene.lights.iter().enumerate() {
             let Some(ls) = light.sample(above) else {
+                if R::ACTIVE {
+                    rec.light(light_record(
+                        index,
+                        light,
+                        Vec3A::ZERO,
+                        None,
+                        0.0,
+                        Some("the point is outside the light's cone (or at the light)"),
+                    ));
+                }
                 continue;
             };
             let cos = ns.dot(ls.to_light);
             if cos <= 0.0 || n.dot(ls.to_light) <= 0.0 {
+                if R::ACTIVE {
+                    rec.light(light_record(
+                        index,
+                        light,
+                        ls.to_light,
+                        Some(ls.distance),
+                        cos,
+                        Some("the light is behind the surface"),
+                    ));
+                }
                 continue;
             }
             // What this light would add if nothing were in the way: diffuse (weighed by the
             // opaque part) and the Phong highlight.
-            let mut direct = base * (m.diffuse * cos * (1.0 - t));
+            let diffuse = base * (m.diffuse * cos * (1.0 - t));
+            let mut specular = Color::ZERO;
             if m.specular != Color::ZERO {
                 let r = reflect(-ls.to_light, ns);
-                direct += m.specular * r.dot(view).max(0.0).powf(m.shininess);
+                specular = m.specular * r.dot(view).max(0.0).powf(m.shininess);
             }
+            let direct = diffuse + specular;
             // A shadow ray cannot change what is too faint to see (clear glass away from its
             // highlight adds nothing here).
             if direct.max_element() < MIN_RESPONSE {
+                if R::ACTIVE {
+                    let mut l = light_record(
+                        index,
+                        light,
+                        ls.to_light,
+                        Some(ls.distance),
+                        cos,
+                        Some("the surface returns too little of this light to need a shadow ray"),
+                    );
+                    l.diffuse = diffuse.to_array();
+                    l.specular = specular.to_array();
+                    rec.light(l);
+                }
                 continue;
             }
-            out += ls.radiance * direct * self.shadow(scene, above, ls.to_light, ls.distance, rays);
+            let (seen, shadow) =
+                self.shadow_recorded::<R>(scene, above, ls.to_light, ls.distance, rays);
+            let adds = ls.radiance * direct * seen;
+            out += adds;
+            if R::ACTIVE {
+                let mut l = light_record(index, light, ls.to_light, Some(ls.distance), cos, None);
+                l.radiance = ls.radiance.to_array();
+                l.diffuse = diffuse.to_array();
+                l.specular = specular.to_array();
+                l.shadow = shadow;
+                l.contribution = adds.to_array();
+                rec.light(l);
+            }
         }
-        if depth >= scene.settings.max_depth {
+        if seg.depth >= scene.settings.max_depth {
+            if R::ACTIVE && (t > 0.0 || m.reflectivity > 0.0) {
+                rec.note(format!(
+                    "no reflected or refracted rays: max_depth {} reached",
+                    scene.settings.max_depth
+                ));
+            }
             return out;
         }
         let mut reflect_weight = (1.0 - t) * m.reflectivity;
@@ -136,6 +275,19 @@ impl Whitted {
             let refracted = refract(d, ns, eta)
                 .filter(|r| r.dot(n) < 0.0)
                 .or_else(|| refract(d, n, eta));
+            if R::ACTIVE {
+                let c = cos_i.clamp(0.0, 1.0);
+                let sin_i = (1.0 - c * c).max(0.0).sqrt();
+                let tir = eta * sin_i >= 1.0;
+                rec.fresnel(FresnelRecord {
+                    cos_i,
+                    sin_i,
+                    eta,
+                    sin_t: (!tir).then_some(eta * sin_i),
+                    reflectance: fresnel,
+                    total_internal_reflection: tir,
+                });
+            }
             if fresnel < 1.0
                 && let Some(dir) = refracted
             {
@@ -146,15 +298,15 @@ impl Whitted {
                 } else {
                     (None, Color::ONE)
                 };
-                let transmitted = self.trace_from(
-                    scene,
-                    &Ray::new(below, dir),
-                    hit.point,
-                    depth + 1,
-                    inside,
-                    rays,
-                );
-                out += transmitted * filter * (t * (1.0 - fresnel));
+                let weight = filter * (t * (1.0 - fresnel));
+                let child = Segment {
+                    kind: RayKind::Refraction,
+                    from: hit.point,
+                    depth: seg.depth + 1,
+                    medium: inside,
+                    weight,
+                };
+                out += self.trace_from(scene, &Ray::new(below, dir), &child, rays, rec) * weight;
             }
         }
         if reflect_weight > 0.0 {
@@ -163,7 +315,14 @@ impl Whitted {
                 dir = reflect(d, n);
             }
             let r = Ray::new(above, dir.normalize());
-            out += self.trace_from(scene, &r, hit.point, depth + 1, medium, rays) * reflect_weight;
+            let child = Segment {
+                kind: RayKind::Reflection,
+                from: hit.point,
+                depth: seg.depth + 1,
+                medium: seg.medium,
+                weight: Color::splat(reflect_weight),
+            };
+            out += self.trace_from(scene, &r, &child, rays, rec) * reflect_weight;
         }
         out
     }
@@ -180,13 +339,40 @@ impl Whitted {
         distance: f32,
         rays: &mut RayStats,
     ) -> Color {
+        self.shadow_recorded::<NoRecord>(scene, origin, dir, distance, rays)
+            .0
+    }
+
+    /// [`Whitted::shadow`], with what the shadow ray met when `R` records.
+    fn shadow_recorded<R: Recorder>(
+        &self,
+        scene: &Scene,
+        origin: Vec3A,
+        dir: Vec3A,
+        distance: f32,
+        rays: &mut RayStats,
+    ) -> (Color, Option<ShadowRecord>) {
         let ray = Ray::new(origin, dir);
         rays.shadow += 1;
-        if scene.opaque_blocked(&ray, distance) {
-            return Color::ZERO;
+        let mut record = R::ACTIVE.then(ShadowRecord::default);
+        let finish = |c: Color, mut record: Option<ShadowRecord>| {
+            if let Some(r) = &mut record {
+                r.transmitted = c.to_array();
+            }
+            (c, record)
+        };
+        if R::ACTIVE {
+            if let Some(b) = scene.opaque_blocker(&ray, distance) {
+                if let Some(r) = &mut record {
+                    r.blocked_by = Some(scene.objects[b].name.clone());
+                }
+                return finish(Color::ZERO, record);
+            }
+        } else if scene.opaque_blocked(&ray, distance) {
+            return (Color::ZERO, None);
         }
         if !scene.has_transparent() {
-            return Color::ONE;
+            return finish(Color::ONE, record);
         }
         let mut visible = Color::ONE;
         let mut ray = ray;
@@ -196,7 +382,7 @@ impl Whitted {
         for _ in 0..MAX_SHADOW_CROSSINGS {
             rays.shadow += 1;
             let Some(h) = scene.closest_transparent_hit(&ray, remaining) else {
-                return visible;
+                return finish(visible, record);
             };
             let m = scene.material_at(&h);
             let entering = dir.dot(h.normal) < 0.0;
@@ -212,14 +398,80 @@ impl Whitted {
             } else {
                 f *= beer_lambert(m.absorption, (h.point - entered_at).length());
             }
+            if let Some(r) = &mut record {
+                r.crossings.push(Crossing {
+                    object: scene.objects[h.object].name.clone(),
+                    way: if entering { "entering" } else { "leaving" },
+                    fraction: f.to_array(),
+                });
+            }
             visible *= f;
             if visible.max_element() < 1e-4 {
-                return Color::ZERO;
+                return finish(Color::ZERO, record);
             }
             ray = Ray::new(offset_ray_origin(h.point, -n), dir);
             remaining -= h.t;
         }
-        Color::ZERO
+        finish(Color::ZERO, record)
+    }
+}
+
+/// The record of a hit.
+fn hit_record(scene: &Scene, hit: &Hit, entering: bool, base: Color) -> HitRecord {
+    let m = scene.material_at(hit);
+    HitRecord {
+        object: scene.objects[hit.object].name.clone(),
+        object_index: hit.object,
+        t: hit.t,
+        point: hit.point.to_array(),
+        normal: hit.normal.to_array(),
+        shading_normal: hit.shading_normal.to_array(),
+        uv: uv2(hit.tex.uv),
+        side: if entering { "outside" } else { "inside" },
+        material: scene
+            .material_names
+            .get(hit.material)
+            .cloned()
+            .unwrap_or_default(),
+        terms: MaterialTerms {
+            color: base.to_array(),
+            ambient: m.ambient,
+            diffuse: m.diffuse,
+            specular: m.specular.to_array(),
+            shininess: m.shininess,
+            reflectivity: m.reflectivity,
+            transparency: m.transparency,
+            ior: m.ior,
+            absorption: m.absorption.to_array(),
+        },
+    }
+}
+
+/// A light's record before its terms are known.
+fn light_record(
+    index: usize,
+    light: &Light,
+    to_light: Vec3A,
+    distance: Option<f32>,
+    cos: f32,
+    skipped: Option<&'static str>,
+) -> LightRecord {
+    LightRecord {
+        light: index,
+        kind: match light {
+            Light::Point { .. } => "point",
+            Light::Directional { .. } => "directional",
+            Light::Spot { .. } => "spot",
+        },
+        to_light: to_light.to_array(),
+        distance: distance.filter(|d| d.is_finite()),
+        cos,
+        radiance: [0.0; 3],
+        diffuse: [0.0; 3],
+        specular: [0.0; 3],
+        shadow: None,
+        contribution: [0.0; 3],
+        skipped,
     }
 }
 

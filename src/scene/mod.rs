@@ -374,6 +374,12 @@ impl Scene {
             .any_hit(&self.objects, ray, t_max, |i| !self.transparent[i])
     }
 
+    /// An opaque object that blocks the ray in `(0, t_max)`, if any (the first found).
+    pub fn opaque_blocker(&self, ray: &Ray, t_max: f32) -> Option<usize> {
+        self.accel
+            .first_blocker(&self.objects, ray, t_max, |i| !self.transparent[i])
+    }
+
     /// Whether any object is transparent (shadow rays then look further).
     pub fn has_transparent(&self) -> bool {
         !self.transparent_objects.is_empty()

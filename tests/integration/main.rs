@@ -3,6 +3,7 @@
 
 mod bad;
 mod cli;
+mod explain;
 mod meshes;
 mod optics;
 mod renders;

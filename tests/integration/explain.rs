@@ -1,0 +1,166 @@
+//! The ray explainer: the tree behind a pixel of the seed scene's diamond must show the ray
+//! entering, bending by Snell's law, leaving by the far side and reaching the floor, with the
+//! same colour the renderer computes; its JSON must parse; big trees are cut and say so.
+
+use super::repo;
+use snell::integrator::explain::{RayKind, RayNode, TreeRecorder};
+use snell::integrator::{Integrator, RayStats, Whitted};
+use snell::math::Vec3A;
+use snell::scene::load;
+use std::process::Command;
+
+fn v(a: [f32; 3]) -> Vec3A {
+    Vec3A::from_array(a)
+}
+
+/// The tree behind the centre of pixel (512, 760) of the seed scene: a diamond pixel.
+fn diamond_tree(max_rays: usize) -> (RayNode, snell::math::Color) {
+    let scene = load(&repo("scenes/seed.toml")).unwrap();
+    let s = &scene.settings;
+    let ray = scene.camera.ray(512.5, 760.5, s.width, s.height);
+    let mut rec = TreeRecorder::new(max_rays);
+    let c = Whitted.explain(&scene, &ray, &mut RayStats::default(), &mut rec);
+    // Recording changes nothing.
+    let plain = Whitted.radiance(&scene, &ray, &mut RayStats::default());
+    assert_eq!(c, plain, "explaining changed the colour");
+    (rec.finish().unwrap(), c)
+}
+
+/// sin of the angle between a unit direction and a unit normal's line.
+fn sin_to(d: Vec3A, n: Vec3A) -> f32 {
+    d.cross(n).length()
+}
+
+#[test]
+fn a_diamond_pixel_shows_snells_law_and_the_way_out() {
+    let (root, colour) = diamond_tree(1000);
+    assert_eq!(root.kind, RayKind::Camera);
+    let hit = root.hit.as_ref().unwrap();
+    assert_eq!(hit.object, "diamond sphere");
+    assert_eq!(hit.side, "outside");
+    // The ray enters: Snell's law between the camera ray and the refracted one.
+    let f = root.fresnel.as_ref().unwrap();
+    assert!((f.eta - 1.0 / 2.42).abs() < 1e-6);
+    let inside = root
+        .children
+        .iter()
+        .find(|c| c.kind == RayKind::Refraction)
+        .expect("a refracted ray");
+    let n = v(hit.normal);
+    let (sin_i, sin_t) = (sin_to(v(root.direction), n), sin_to(v(inside.direction), n));
+    assert!((sin_i - f.sin_i).abs() < 1e-5, "{sin_i} vs {}", f.sin_i);
+    assert!(
+        (sin_t - sin_i / 2.42).abs() < 1e-5,
+        "Snell: sin t = {sin_t}, sin i / 2.42 = {}",
+        sin_i / 2.42
+    );
+    assert!((f.sin_t.unwrap() - sin_t).abs() < 1e-5);
+    // Its weight is the transmitted part of the Fresnel split.
+    assert!((inside.weight[0] - (1.0 - f.reflectance)).abs() < 1e-6);
+    // Inside, it meets the far side of the same sphere, from inside, and leaves.
+    let far = inside.hit.as_ref().unwrap();
+    assert_eq!(
+        (far.object.as_str(), far.side),
+        ("diamond sphere", "inside")
+    );
+    let chord = (v(far.point) - v(hit.point)).length();
+    assert!(
+        (chord - far.t).abs() < 1e-3,
+        "t along a unit ray is the distance"
+    );
+    let out = inside
+        .children
+        .iter()
+        .find(|c| c.kind == RayKind::Refraction)
+        .expect("a ray leaving the diamond");
+    let floor = out.hit.as_ref().expect("the leaving ray hits something");
+    assert_eq!(floor.object, "floor");
+    assert!(
+        (floor.point[1] + 15.0).abs() < 1e-3,
+        "the floor is at y = -15"
+    );
+    // Leaving, Snell's law the other way: sin t = 2.42 sin i.
+    let fo = inside.fresnel.as_ref().unwrap();
+    let no = v(far.normal);
+    let (si, st) = (
+        sin_to(v(inside.direction), no),
+        sin_to(v(out.direction), no),
+    );
+    assert!((st - 2.42 * si).abs() < 1e-4, "{st} vs {}", 2.42 * si);
+    assert!((fo.eta - 2.42).abs() < 1e-6);
+    // The root returns the sample's colour.
+    assert_eq!(root.color, colour.to_array());
+}
+
+#[test]
+fn big_trees_are_cut_and_say_so() {
+    let (root, _) = diamond_tree(3);
+    fn count(n: &RayNode) -> usize {
+        1 + n.children.iter().map(count).sum::<usize>()
+    }
+    assert_eq!(count(&root), 3);
+    assert!(
+        root.notes
+            .iter()
+            .any(|n| n.contains("the tree was cut at 3 rays")),
+        "{:?}",
+        root.notes
+    );
+}
+
+#[test]
+fn the_command_prints_the_tree_and_its_json_parses() {
+    let run = |args: &[&str]| {
+        Command::new(env!("CARGO_BIN_EXE_snell"))
+            .args(args)
+            .current_dir(repo(""))
+            .output()
+            .unwrap()
+    };
+    let text = run(&["explain", "scenes/seed.toml", "--pixel", "512,760"]);
+    assert_eq!(text.status.code(), Some(0));
+    let out = String::from_utf8_lossy(&text.stdout);
+    for needle in [
+        "camera ray (depth 1)",
+        "hits \"diamond sphere\"",
+        "from the outside",
+        "from the inside",
+        "sin t = eta sin i",
+        "hits \"floor\"",
+        "shadow ray",
+    ] {
+        assert!(out.contains(needle), "missing `{needle}` in\n{out}");
+    }
+    let json = run(&[
+        "explain",
+        "scenes/seed.toml",
+        "--pixel",
+        "512,760",
+        "--sample",
+        "3",
+        "--spp",
+        "16",
+        "--json",
+    ]);
+    assert_eq!(json.status.code(), Some(0));
+    let doc: serde_json::Value = serde_json::from_slice(&json.stdout).expect("valid JSON");
+    assert_eq!(doc["pixel"], serde_json::json!([512, 760]));
+    assert_eq!(doc["tree"]["kind"], "camera");
+    assert!(doc["tree"]["children"].is_array());
+    for bad in [
+        &["explain", "scenes/seed.toml", "--pixel", "1024,0"][..],
+        &["explain", "scenes/seed.toml", "--pixel", "12"],
+        &[
+            "explain",
+            "scenes/seed.toml",
+            "--pixel",
+            "1,1",
+            "--sample",
+            "1",
+        ],
+    ] {
+        let o = run(bad);
+        assert_eq!(o.status.code(), Some(2), "{bad:?}");
+        assert!(!String::from_utf8_lossy(&o.stderr).contains("panicked"));
+    }
+}
