@@ -4,8 +4,9 @@
 use clap::{Args, Parser, Subcommand};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use snell::integrator::Whitted;
+use snell::integrator::aov::{Aov, render_aovs};
 use snell::integrator::explain::TreeRecorder;
-use snell::output::{OutputError, PendingOutput};
+use snell::output::{ExrLayer, OutputError, OutputFormat, PendingOutput, encode_exr_layers};
 use snell::scene::{RenderSettings, SceneError};
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
@@ -85,6 +86,29 @@ struct RenderArgs {
     /// and how many rays of each kind were traced, per second.
     #[arg(long)]
     stats: bool,
+    /// Debug views to write besides the picture, comma-separated: normal, uv, depth,
+    /// albedo, object, material, bounces, or all. With a .png output each goes to its own
+    /// file (seed.normal.png ...); with .exr, all go into the one file as layers.
+    #[arg(long, value_name = "NAMES", value_delimiter = ',', value_parser = parse_aov)]
+    aov: Vec<Vec<Aov>>,
+}
+
+fn parse_aov(s: &str) -> Result<Vec<Aov>, String> {
+    if s == "all" {
+        return Ok(Aov::ALL.to_vec());
+    }
+    Aov::from_name(s).map(|a| vec![a]).ok_or_else(|| {
+        let names: Vec<&str> = Aov::ALL.iter().map(|a| a.name()).collect();
+        format!("`{s}` is not a debug view: use {} or all", names.join(", "))
+    })
+}
+
+/// `out.png` with a view's name before the extension: `out.normal.png`.
+fn aov_path(out: &Path, aov: Aov) -> PathBuf {
+    let mut name = out.file_stem().unwrap_or_default().to_os_string();
+    name.push(format!(".{}.", aov.name()));
+    name.push(out.extension().unwrap_or_default());
+    out.with_file_name(name)
 }
 
 #[derive(Args, Debug)]
@@ -336,6 +360,25 @@ fn render(args: RenderArgs) -> ExitCode {
             return ExitCode::from(1);
         }
     };
+    let mut aovs: Vec<Aov> = vec![];
+    for a in args.aov.iter().flatten() {
+        if !aovs.contains(a) {
+            aovs.push(*a);
+        }
+    }
+    // Separate PNGs are reserved now, like the picture, so a bad path fails before rendering.
+    let mut aov_outputs = vec![];
+    if pending.format() == OutputFormat::Png {
+        for &a in &aovs {
+            match PendingOutput::create(&aov_path(&out_path, a)) {
+                Ok(p) => aov_outputs.push((a, p)),
+                Err(e) => {
+                    eprintln!("error: {e}");
+                    return ExitCode::from(1);
+                }
+            }
+        }
+    }
     if !args.quiet {
         for w in &scene.warnings {
             eprintln!("warning: {w}");
@@ -372,7 +415,19 @@ fn render(args: RenderArgs) -> ExitCode {
     };
     bar.finish_and_clear();
     let elapsed = start.elapsed().as_secs_f64();
-    if let Err(e) = pending.commit(&rendered.image) {
+    let written = if aovs.is_empty() {
+        pending.commit(&rendered.image).map_err(|e| e.to_string())
+    } else {
+        write_aovs(
+            &scene,
+            threads,
+            &rendered.image,
+            pending,
+            &aovs,
+            aov_outputs,
+        )
+    };
+    if let Err(e) = written {
         eprintln!("error: {e}");
         return ExitCode::from(1);
     }
@@ -389,6 +444,32 @@ fn render(args: RenderArgs) -> ExitCode {
         print_stats(&scene.stats, load_time, &rendered.rays, elapsed);
     }
     ExitCode::SUCCESS
+}
+
+/// Writes the picture and its debug views: one multi-layer EXR, or a PNG per view.
+fn write_aovs(
+    scene: &snell::Scene,
+    threads: Option<usize>,
+    image: &snell::film::Image,
+    pending: PendingOutput,
+    aovs: &[Aov],
+    pngs: Vec<(Aov, PendingOutput)>,
+) -> Result<(), String> {
+    let buffers = render_aovs(scene, threads).map_err(|e| e.to_string())?;
+    if pending.format() == OutputFormat::Exr {
+        let layers: Vec<ExrLayer> = aovs
+            .iter()
+            .map(|&a| (a.name(), buffers.channels(a)))
+            .collect();
+        let bytes = encode_exr_layers(image, &layers, pending.path()).map_err(|e| e.to_string())?;
+        return pending.commit_bytes(&bytes).map_err(|e| e.to_string());
+    }
+    pending.commit(image).map_err(|e| e.to_string())?;
+    for (a, out) in pngs {
+        out.commit(&buffers.display(a, scene.settings.max_depth))
+            .map_err(|e| e.to_string())?;
+    }
+    Ok(())
 }
 
 /// The `--stats` report.

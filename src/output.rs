@@ -115,6 +115,52 @@ pub fn encode(img: &Image, format: OutputFormat, path: &Path) -> Result<Vec<u8>,
     Ok(bytes)
 }
 
+/// One layer of a multi-layer EXR: its name and its channels (name, one value per pixel).
+pub type ExrLayer<'a> = (&'a str, Vec<(&'a str, Vec<f32>)>);
+
+/// An OpenEXR file with layers: the picture as channels `R G B`, and each extra layer's
+/// channels named `LAYER.CHANNEL` (`normal.X`, `depth.Z` ...), the OpenEXR convention for
+/// layers within one part, which compositors and viewers list as layers. All 32-bit float,
+/// lossless.
+pub fn encode_exr_layers(
+    img: &Image,
+    layers: &[ExrLayer],
+    path: &Path,
+) -> Result<Vec<u8>, OutputError> {
+    use exr::prelude::*;
+    let size = (img.width as usize, img.height as usize);
+    let channel = |name: &str, values: Vec<f32>| AnyChannel::new(name, FlatSamples::F32(values));
+    let plane = |k: usize| img.pixels.iter().map(|c| c[k]).collect::<Vec<f32>>();
+    let mut channels = vec![
+        channel("R", plane(0)),
+        channel("G", plane(1)),
+        channel("B", plane(2)),
+    ];
+    for (layer, list) in layers {
+        for (c, values) in list {
+            channels.push(channel(&format!("{layer}.{c}"), values.clone()));
+        }
+    }
+    let image = exr::image::Image::from_layer(Layer::new(
+        size,
+        LayerAttributes::default(),
+        Encoding::FAST_LOSSLESS,
+        AnyChannels::sort(SmallVec::from_vec(channels)),
+    ));
+    let mut bytes = vec![];
+    image
+        .write()
+        .to_buffered(std::io::Cursor::new(&mut bytes))
+        .map_err(|e| OutputError::Encode {
+            path: path.to_path_buf(),
+            source: image::ImageError::Encoding(image::error::EncodingError::new(
+                image::error::ImageFormatHint::Exact(image::ImageFormat::OpenExr),
+                e,
+            )),
+        })?;
+    Ok(bytes)
+}
+
 /// An output file reserved before rendering: a temporary file beside the destination,
 /// created up front so an unwritable destination fails before the work starts. Dropping it
 /// without [`PendingOutput::commit`] removes the temporary file and leaves any old image alone.
@@ -160,16 +206,31 @@ impl PendingOutput {
         })
     }
 
+    /// The format the destination's name asks for.
+    pub fn format(&self) -> OutputFormat {
+        self.format
+    }
+
+    /// The destination.
+    pub fn path(&self) -> &Path {
+        &self.path
+    }
+
     /// Encodes the image, writes it to the temporary file, flushes it to disk and renames it
     /// over the destination.
-    pub fn commit(mut self, img: &Image) -> Result<(), OutputError> {
+    pub fn commit(self, img: &Image) -> Result<(), OutputError> {
         let bytes = encode(img, self.format, &self.path)?;
+        self.commit_bytes(&bytes)
+    }
+
+    /// Writes already encoded bytes (in this output's format) and renames them into place.
+    pub fn commit_bytes(mut self, bytes: &[u8]) -> Result<(), OutputError> {
         let io = |source| OutputError::Io {
             path: self.path.clone(),
             source,
         };
         let mut file = self.file.take().expect("commit runs once");
-        file.write_all(&bytes).map_err(io)?;
+        file.write_all(bytes).map_err(io)?;
         file.sync_all().map_err(io)?;
         drop(file);
         std::fs::rename(&self.tmp, &self.path).map_err(io)?;

@@ -1,6 +1,7 @@
 //! Ways of turning a camera ray into a colour. One file per integrator; they are chosen
 //! once per render, so a trait object is fine here.
 
+pub mod aov;
 pub mod explain;
 mod whitted;
 

@@ -307,7 +307,14 @@ impl Scene {
     #[inline]
     pub fn closest_hit(&self, ray: &Ray, t_max: f32) -> Option<Hit> {
         let (i, h) = self.accel.closest_hit(&self.objects, ray, t_max)?;
-        Some(self.hit_details(ray, i, h))
+        Some(self.hit_details(ray, i, h, false))
+    }
+
+    /// As [`Scene::closest_hit`], with the shape's uv worked out even where no texture reads
+    /// it (for debug views).
+    pub fn closest_hit_with_uv(&self, ray: &Ray, t_max: f32) -> Option<Hit> {
+        let (i, h) = self.accel.closest_hit(&self.objects, ray, t_max)?;
+        Some(self.hit_details(ray, i, h, true))
     }
 
     /// Closest hit in `(0, t_max)` without its surface details: the object's index and the
@@ -326,12 +333,12 @@ impl Scene {
                 best = Some((i, h));
             }
         }
-        best.map(|(i, h)| self.hit_details(ray, i, h))
+        best.map(|(i, h)| self.hit_details(ray, i, h, false))
     }
 
-    fn hit_details(&self, ray: &Ray, i: usize, h: ShapeHit) -> Hit {
+    fn hit_details(&self, ray: &Ray, i: usize, h: ShapeHit, force_uv: bool) -> Hit {
         let o = &self.objects[i];
-        let want_uv = self.needs_uv[i];
+        let want_uv = force_uv || self.needs_uv[i];
         let local = match &o.transform {
             None => *ray,
             Some(t) => t.ray_to_object(ray),

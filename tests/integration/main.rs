@@ -1,6 +1,7 @@
 //! Integration tests, built as one test binary: the command line, whole renders (golden
 //! images, determinism) and optics through a built scene.
 
+mod aov;
 mod bad;
 mod cli;
 mod explain;

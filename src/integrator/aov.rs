@@ -1,0 +1,281 @@
+//! Debug views (arbitrary output variables): what the ray through each pixel's centre meets
+//! first — its normal, uv, distance, surface colour, object and material — and how deep the
+//! Whitted tree behind it goes. One ray per pixel, no anti-aliasing, so ids stay exact.
+//!
+//! [`AovBuffers::channels`] gives the raw values (for a multi-layer EXR);
+//! [`AovBuffers::display`] maps them to colours that read well (for PNG), documented in
+//! docs/debugging.md.
+
+use super::{RayStats, Whitted};
+use crate::film::Image;
+use crate::math::{Color, Vec2, Vec3A};
+use crate::render::RenderError;
+use crate::scene::Scene;
+use crate::texture::srgb_to_linear;
+use rayon::prelude::*;
+
+/// A debug view.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Aov {
+    /// The shading normal in world space.
+    Normal,
+    /// The texture coordinates the surface's textures read.
+    Uv,
+    /// Distance along the camera ray to the first hit.
+    Depth,
+    /// The surface colour (the material's texture at the hit), unlit.
+    Albedo,
+    /// Which object was hit.
+    Object,
+    /// Which material is at the hit.
+    Material,
+    /// How many reflections and refractions the Whitted tree behind the pixel goes down.
+    Bounces,
+}
+
+impl Aov {
+    /// Every view, in the order they are documented.
+    pub const ALL: [Aov; 7] = [
+        Aov::Normal,
+        Aov::Uv,
+        Aov::Depth,
+        Aov::Albedo,
+        Aov::Object,
+        Aov::Material,
+        Aov::Bounces,
+    ];
+
+    /// The name used on the command line, in file names and as the EXR layer name.
+    pub fn name(self) -> &'static str {
+        match self {
+            Aov::Normal => "normal",
+            Aov::Uv => "uv",
+            Aov::Depth => "depth",
+            Aov::Albedo => "albedo",
+            Aov::Object => "object",
+            Aov::Material => "material",
+            Aov::Bounces => "bounces",
+        }
+    }
+
+    /// The view with this name.
+    pub fn from_name(name: &str) -> Option<Aov> {
+        Aov::ALL.into_iter().find(|a| a.name() == name)
+    }
+}
+
+/// The raw values of every view, per pixel (row by row from the top).
+#[derive(Clone, Debug, PartialEq)]
+pub struct AovBuffers {
+    /// Width in pixels.
+    pub width: u32,
+    /// Height in pixels.
+    pub height: u32,
+    /// Unit shading normal (zero where the ray hits nothing).
+    pub normal: Vec<Vec3A>,
+    /// Texture coordinates (zero where nothing is hit).
+    pub uv: Vec<Vec2>,
+    /// Distance to the first hit (infinite where nothing is hit).
+    pub depth: Vec<f32>,
+    /// Surface colour, linear RGB (zero where nothing is hit).
+    pub albedo: Vec<Color>,
+    /// Index of the object in `[[objects]]` (-1 where nothing is hit).
+    pub object: Vec<i32>,
+    /// Index of the material in the scene's list (-1 where nothing is hit).
+    pub material: Vec<i32>,
+    /// Reflections and refractions below the camera ray (0: the camera ray alone).
+    pub bounces: Vec<u32>,
+}
+
+/// What one pixel's centre ray finds.
+#[derive(Clone, Copy, Debug)]
+struct Sample {
+    normal: Vec3A,
+    uv: Vec2,
+    depth: f32,
+    albedo: Color,
+    object: i32,
+    material: i32,
+    bounces: u32,
+}
+
+/// Traces the ray through the centre of every pixel and records every view.
+pub fn render_aovs(scene: &Scene, threads: Option<usize>) -> Result<AovBuffers, RenderError> {
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads.unwrap_or(0))
+        .build()
+        .map_err(|source| RenderError::Threads {
+            threads: threads.unwrap_or(0),
+            source,
+        })?;
+    let (w, h) = (scene.settings.width, scene.settings.height);
+    let rows: Vec<Vec<Sample>> = pool.install(|| {
+        (0..h)
+            .into_par_iter()
+            .map(|y| (0..w).map(|x| sample(scene, x, y)).collect())
+            .collect()
+    });
+    let all: Vec<Sample> = rows.into_iter().flatten().collect();
+    Ok(AovBuffers {
+        width: w,
+        height: h,
+        normal: all.iter().map(|s| s.normal).collect(),
+        uv: all.iter().map(|s| s.uv).collect(),
+        depth: all.iter().map(|s| s.depth).collect(),
+        albedo: all.iter().map(|s| s.albedo).collect(),
+        object: all.iter().map(|s| s.object).collect(),
+        material: all.iter().map(|s| s.material).collect(),
+        bounces: all.iter().map(|s| s.bounces).collect(),
+    })
+}
+
+fn sample(scene: &Scene, x: u32, y: u32) -> Sample {
+    let s = &scene.settings;
+    let ray = scene
+        .camera
+        .ray(x as f32 + 0.5, y as f32 + 0.5, s.width, s.height);
+    let mut rays = RayStats::default();
+    Whitted.trace(scene, &ray, 1, None, &mut rays);
+    let bounces = rays.deepest.saturating_sub(1);
+    match scene.closest_hit_with_uv(&ray, f32::INFINITY) {
+        None => Sample {
+            normal: Vec3A::ZERO,
+            uv: Vec2::ZERO,
+            depth: f32::INFINITY,
+            albedo: Color::ZERO,
+            object: -1,
+            material: -1,
+            bounces,
+        },
+        Some(hit) => {
+            let m = scene.material_at(&hit);
+            // The texture's colour at the hit (from the hit as rendering sees it, where uv is
+            // only worked out if the texture reads it: the same either way).
+            Sample {
+                normal: hit.shading_normal,
+                uv: hit.tex.uv,
+                depth: hit.t,
+                albedo: scene.textures[m.texture].eval(&hit.tex),
+                object: hit.object as i32,
+                material: hit.material as i32,
+                bounces,
+            }
+        }
+    }
+}
+
+/// A distinct, stable colour for index `i` (the golden-ratio walk around the hue circle, so
+/// neighbours in the list differ strongly), black for -1.
+pub fn id_color(i: i32) -> Color {
+    if i < 0 {
+        return Color::ZERO;
+    }
+    let hue = (i as f32 * 0.618_034 + 0.1).fract();
+    hsv(hue, 0.7, 0.95)
+}
+
+fn hsv(h: f32, s: f32, v: f32) -> Color {
+    let f = |n: f32| {
+        let k = (n + h * 6.0) % 6.0;
+        v - v * s * k.min(4.0 - k).clamp(0.0, 1.0)
+    };
+    Color::new(f(5.0), f(3.0), f(1.0))
+}
+
+/// Few-stop colour ramp from dark blue (0) through teal and green to yellow (1), readable
+/// and monotone in brightness.
+fn ramp(t: f32) -> Color {
+    const STOPS: [[f32; 3]; 5] = [
+        [0.27, 0.0, 0.33],
+        [0.23, 0.32, 0.55],
+        [0.13, 0.57, 0.55],
+        [0.37, 0.79, 0.38],
+        [0.99, 0.91, 0.14],
+    ];
+    let t = t.clamp(0.0, 1.0) * (STOPS.len() - 1) as f32;
+    let i = (t as usize).min(STOPS.len() - 2);
+    let f = t - i as f32;
+    Color::from(STOPS[i]).lerp(Color::from(STOPS[i + 1]), f)
+}
+
+impl AovBuffers {
+    /// The raw values of `aov` as named channels, for an EXR layer: normal `X Y Z`, uv
+    /// `U V`, depth `Z`, albedo `R G B`, object and material `id`, bounces `count`.
+    pub fn channels(&self, aov: Aov) -> Vec<(&'static str, Vec<f32>)> {
+        let per = |f: &dyn Fn(usize) -> f32| (0..self.depth.len()).map(f).collect::<Vec<f32>>();
+        match aov {
+            Aov::Normal => vec![
+                ("X", per(&|i| self.normal[i].x)),
+                ("Y", per(&|i| self.normal[i].y)),
+                ("Z", per(&|i| self.normal[i].z)),
+            ],
+            Aov::Uv => vec![("U", per(&|i| self.uv[i].x)), ("V", per(&|i| self.uv[i].y))],
+            Aov::Depth => vec![("Z", self.depth.clone())],
+            Aov::Albedo => vec![
+                ("R", per(&|i| self.albedo[i].x)),
+                ("G", per(&|i| self.albedo[i].y)),
+                ("B", per(&|i| self.albedo[i].z)),
+            ],
+            Aov::Object => vec![("id", per(&|i| self.object[i] as f32))],
+            Aov::Material => vec![("id", per(&|i| self.material[i] as f32))],
+            Aov::Bounces => vec![("count", per(&|i| self.bounces[i] as f32))],
+        }
+    }
+
+    /// `aov` as a picture for people. The values given here are what the PNG holds (they
+    /// are stored so that sRGB encoding gives them back exactly):
+    /// - normal: `0.5 + 0.5 n` per channel (x red, y green, z blue); black where nothing is hit;
+    /// - uv: red = u, green = v (their fractional parts), with darker grid lines every 0.1;
+    /// - depth: 1 (white) at the nearest hit down to 0.15 at the farthest, linearly in
+    ///   distance; black where nothing is hit;
+    /// - albedo: the surface colour, sRGB-encoded like the render;
+    /// - object, material: a distinct colour per index (see [`id_color`]);
+    /// - bounces: a ramp from dark blue (0) to yellow (`max_depth - 1`).
+    pub fn display(&self, aov: Aov, max_depth: u32) -> Image {
+        let mut img = Image::new(self.width, self.height);
+        let (near, far) = self
+            .depth
+            .iter()
+            .filter(|d| d.is_finite())
+            .fold((f32::INFINITY, 0.0f32), |(lo, hi), &d| {
+                (lo.min(d), hi.max(d))
+            });
+        for (i, px) in img.pixels.iter_mut().enumerate() {
+            let hit = self.object[i] >= 0;
+            // Display values, to be stored as they are.
+            let value = match aov {
+                Aov::Normal if hit => self.normal[i] * 0.5 + Vec3A::splat(0.5),
+                Aov::Uv if hit => {
+                    let uv = self.uv[i];
+                    let (u, v) = (uv.x.rem_euclid(1.0), uv.y.rem_euclid(1.0));
+                    let line = |t: f32| (t * 10.0).rem_euclid(1.0) < 0.06;
+                    let shade = if line(uv.x) || line(uv.y) { 0.55 } else { 1.0 };
+                    Color::new(u, v, 0.0) * shade
+                }
+                Aov::Depth if hit => {
+                    let f = if far > near {
+                        (self.depth[i] - near) / (far - near)
+                    } else {
+                        0.0
+                    };
+                    Color::splat(1.0 - 0.85 * f)
+                }
+                Aov::Albedo => {
+                    *px = self.albedo[i];
+                    continue;
+                }
+                Aov::Object => id_color(self.object[i]),
+                Aov::Material => id_color(self.material[i]),
+                Aov::Bounces => ramp(self.bounces[i] as f32 / (max_depth.max(2) - 1) as f32),
+                _ => Color::ZERO,
+            };
+            let v = value.clamp(Color::ZERO, Color::ONE);
+            *px = Color::new(
+                srgb_to_linear(v.x),
+                srgb_to_linear(v.y),
+                srgb_to_linear(v.z),
+            );
+        }
+        img
+    }
+}

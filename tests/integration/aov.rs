@@ -1,0 +1,174 @@
+//! Debug views: on the seed scene each must show what it claims (the floor's normal is up,
+//! the cylinder's side is horizontal and its cap vertical, the Earth's uv runs smoothly,
+//! depth grows with distance along the floor, ids name the right objects), and the command
+//! line must write them as PNGs or as layers of one EXR.
+
+use super::{repo, scratch};
+use snell::integrator::aov::{Aov, AovBuffers, render_aovs};
+use snell::scene::load;
+use std::process::Command;
+
+const SIZE: u32 = 128;
+
+fn seed_aovs() -> (snell::Scene, AovBuffers) {
+    let mut scene = load(&repo("scenes/seed.toml")).unwrap();
+    scene.settings.width = SIZE;
+    scene.settings.height = SIZE;
+    let b = render_aovs(&scene, Some(2)).unwrap();
+    (scene, b)
+}
+
+fn object_index(scene: &snell::Scene, name: &str) -> i32 {
+    scene.objects.iter().position(|o| o.name == name).unwrap() as i32
+}
+
+#[test]
+fn views_of_the_seed_scene_show_what_they_claim() {
+    let (scene, b) = seed_aovs();
+    let at = |x: u32, y: u32| (y * SIZE + x) as usize;
+    let floor = object_index(&scene, "floor");
+    let cylinder = object_index(&scene, "green cylinder");
+    let earth = object_index(&scene, "earth");
+    // The floor's normal is straight up wherever it is seen.
+    let floor_px: Vec<usize> = (0..b.object.len())
+        .filter(|&i| b.object[i] == floor)
+        .collect();
+    assert!(floor_px.len() > 1000);
+    for &i in &floor_px {
+        assert!((b.normal[i] - snell::math::Vec3A::Y).length() < 1e-5);
+    }
+    // The cylinder: horizontal normals on its side, vertical on its cap.
+    let cyl: Vec<usize> = (0..b.object.len())
+        .filter(|&i| b.object[i] == cylinder)
+        .collect();
+    let (side, cap): (Vec<usize>, Vec<usize>) =
+        cyl.iter().partition(|&&i| b.normal[i].y.abs() < 1e-4);
+    assert!(side.len() > 20, "side seen: {}", side.len());
+    assert!(
+        cap.iter().all(|&i| (b.normal[i].y - 1.0).abs() < 1e-4),
+        "cap normals vertical"
+    );
+    // Depth grows up the image along the floor (the column where the most floor shows,
+    // from the bottom row up until something stands in the way), and misses are infinite.
+    let run = |x: u32| {
+        (0..SIZE)
+            .rev()
+            .take_while(|&y| b.object[at(x, y)] == floor)
+            .map(|y| b.depth[at(x, y)])
+            .collect::<Vec<f32>>()
+    };
+    let depths = (0..SIZE).map(run).max_by_key(|r| r.len()).unwrap();
+    assert!(depths.len() > 10);
+    assert!(
+        depths.windows(2).all(|w| w[1] >= w[0]),
+        "depth monotone: {depths:?}"
+    );
+    assert!(b.depth[at(0, 0)].is_infinite() && b.object[at(0, 0)] == -1);
+    // The Earth's uv: u grows left to right and v top to bottom across its disk, smoothly
+    // (no seam on the side facing the camera).
+    let earth_px: Vec<(u32, u32)> = (0..SIZE)
+        .flat_map(|y| (0..SIZE).map(move |x| (x, y)))
+        .filter(|&(x, y)| b.object[at(x, y)] == earth)
+        .collect();
+    assert!(earth_px.len() > 50);
+    for &(x, y) in &earth_px {
+        if x + 1 < SIZE && b.object[at(x + 1, y)] == earth {
+            let du = b.uv[at(x + 1, y)].x - b.uv[at(x, y)].x;
+            assert!(
+                du > 0.0 && du < 0.2,
+                "u step {du} at {x},{y} (a seam jumps by about -1)"
+            );
+        }
+        if y + 1 < SIZE && b.object[at(x, y + 1)] == earth {
+            let dv = b.uv[at(x, y + 1)].y - b.uv[at(x, y)].y;
+            assert!(dv > 0.0 && dv < 0.2, "v step {dv} at {x},{y}");
+        }
+    }
+    // The diamond shows the deepest trees; the floor none.
+    let diamond = object_index(&scene, "diamond sphere");
+    let deepest = (0..b.object.len())
+        .filter(|&i| b.object[i] == diamond)
+        .map(|i| b.bounces[i])
+        .max()
+        .unwrap();
+    assert_eq!(deepest, scene.settings.max_depth - 1);
+    assert!(floor_px.iter().all(|&i| b.bounces[i] == 0));
+    // Display: normals as 0.5 + 0.5 n, exactly, in the PNG's bytes.
+    let img = b.display(Aov::Normal, scene.settings.max_depth);
+    let bytes = snell::output::to_srgb8(&img);
+    let i = floor_px[0];
+    assert_eq!(&bytes[i * 3..i * 3 + 3], &[128, 255, 128]);
+}
+
+#[test]
+fn the_command_writes_pngs_or_exr_layers() {
+    let dir = scratch("aov-cli");
+    let run = |args: &[&str]| {
+        Command::new(env!("CARGO_BIN_EXE_snell"))
+            .args(args)
+            .current_dir(&dir)
+            .output()
+            .unwrap()
+    };
+    let scene = repo("scenes/seed.toml");
+    let scene = scene.to_str().unwrap();
+    let common = ["--width", "40", "--height", "30", "-q"];
+    let o = run(&[
+        &["render", scene, "-o", "s.png", "--aov", "all"][..],
+        &common,
+    ]
+    .concat());
+    assert_eq!(
+        o.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    for a in Aov::ALL {
+        let p = dir.join(format!("s.{}.png", a.name()));
+        let img = image::open(&p).unwrap_or_else(|e| panic!("{}: {e}", p.display()));
+        assert_eq!((img.width(), img.height()), (40, 30));
+    }
+    let o = run(&[
+        &[
+            "render",
+            scene,
+            "-o",
+            "s.exr",
+            "--aov",
+            "normal,depth,object",
+        ][..],
+        &common,
+    ]
+    .concat());
+    assert_eq!(
+        o.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    let exr = exr::prelude::read_all_flat_layers_from_file(dir.join("s.exr")).unwrap();
+    let mut names: Vec<String> = exr.layer_data[0]
+        .channel_data
+        .list
+        .iter()
+        .map(|c| c.name.to_string())
+        .collect();
+    names.sort();
+    assert_eq!(
+        names,
+        [
+            "B",
+            "G",
+            "R",
+            "depth.Z",
+            "normal.X",
+            "normal.Y",
+            "normal.Z",
+            "object.id"
+        ]
+    );
+    let o = run(&["render", scene, "-o", "s.png", "--aov", "normals"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("is not a debug view"));
+}
