@@ -13,6 +13,23 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::Instant;
 
+/// `print!` that never panics: output cut short (a closed pipe, as with `| head`) is not
+/// an error worth a crash, so write failures are ignored.
+macro_rules! out {
+    ($($arg:tt)*) => {{
+        use std::io::Write as _;
+        let _ = write!(std::io::stdout().lock(), $($arg)*);
+    }};
+}
+
+/// `println!` that never panics (see `out!`).
+macro_rules! outln {
+    ($($arg:tt)*) => {{
+        use std::io::Write as _;
+        let _ = writeln!(std::io::stdout().lock(), $($arg)*);
+    }};
+}
+
 const EXAMPLES: &str = "\
 Examples:
   snell render scenes/seed.toml                 writes seed.png at the scene's size
@@ -194,11 +211,11 @@ fn check(path: &Path) -> ExitCode {
         Ok(s) => s,
         Err(code) => return code,
     };
-    println!("{}", scene.summary());
+    outln!("{}", scene.summary());
     for w in &scene.warnings {
-        println!("warning: {w}");
+        outln!("warning: {w}");
     }
-    println!("ok: {} is a valid scene", path.display());
+    outln!("ok: {} is a valid scene", path.display());
     ExitCode::SUCCESS
 }
 
@@ -277,14 +294,14 @@ fn explain(args: ExplainArgs) -> ExitCode {
             "tree": tree,
         });
         match serde_json::to_string_pretty(&doc) {
-            Ok(text) => println!("{text}"),
+            Ok(text) => outln!("{text}"),
             Err(e) => {
                 eprintln!("error: {e}");
                 return ExitCode::from(1);
             }
         }
     } else {
-        println!(
+        outln!(
             "pixel {x},{y} of {} ({} x {}), {which}, film position ({}, {}):",
             args.scene.display(),
             scene.settings.width,
@@ -292,8 +309,8 @@ fn explain(args: ExplainArgs) -> ExitCode {
             film.0,
             film.1
         );
-        print!("{}", tree.to_text());
-        println!(
+        out!("{}", tree.to_text());
+        outln!(
             "{} rays traced ({} camera, {} reflected or refracted, {} shadow); the sample's colour is ({}, {}, {}) in linear RGB",
             rays.camera + rays.secondary + rays.shadow,
             rays.camera,
@@ -433,7 +450,7 @@ fn render(args: RenderArgs) -> ExitCode {
     }
     if !args.quiet {
         let samples = pixels * spp as u64;
-        println!(
+        outln!(
             "wrote {}: {w} x {h}, {spp} spp, {samples} samples in {elapsed:.2} s ({:.2} M samples/s, {} threads)",
             out_path.display(),
             samples as f64 / elapsed.max(1e-9) / 1e6,
@@ -481,7 +498,7 @@ fn print_stats(
 ) {
     let ms = |d: std::time::Duration| d.as_secs_f64() * 1e3;
     let mib = |b: usize| b as f64 / (1u64 << 20) as f64;
-    println!(
+    outln!(
         "scene:     {} objects; {} mesh(es), {} triangles ({} placed); loaded and built in {:.1} ms",
         s.objects,
         s.meshes,
@@ -489,7 +506,7 @@ fn print_stats(
         s.instanced_triangles,
         ms(load_time)
     );
-    println!(
+    outln!(
         "build:     mesh files read in {:.1} ms, mesh BVHs built in {:.1} ms, object BVH in {:.2} ms",
         ms(s.mesh_load_time),
         ms(s.mesh_bvh_time),
@@ -503,13 +520,13 @@ fn print_stats(
     } else {
         String::new()
     };
-    println!(
+    outln!(
         "memory:    BVHs {:.2} MiB{per_triangle}, mesh data {:.2} MiB",
         mib(s.bvh_bytes),
         mib(s.mesh_bytes)
     );
     let rate = |n: u64| n as f64 / render_secs.max(1e-9) / 1e6;
-    println!(
+    outln!(
         "rays:      {:.2} M in {render_secs:.2} s: {:.2} M rays/s",
         rays.total() as f64 / 1e6,
         rate(rays.total())
@@ -519,7 +536,7 @@ fn print_stats(
         ("secondary", rays.secondary),
         ("shadow", rays.shadow),
     ] {
-        println!(
+        outln!(
             "  {kind:<10} {:>8.2} M  {:>7.2} M/s of render time",
             n as f64 / 1e6,
             rate(n)

@@ -19,7 +19,8 @@ use rayon::prelude::*;
 pub enum Aov {
     /// The shading normal in world space.
     Normal,
-    /// The texture coordinates the surface's textures read.
+    /// The texture coordinates the surface's texture reads (through its mapping), or the
+    /// shape's own where the surface has a plain colour.
     Uv,
     /// Distance along the camera ray to the first hit.
     Depth,
@@ -149,11 +150,10 @@ fn sample(scene: &Scene, x: u32, y: u32) -> Sample {
         },
         Some(hit) => {
             let m = scene.material_at(&hit);
-            // The texture's colour at the hit (from the hit as rendering sees it, where uv is
-            // only worked out if the texture reads it: the same either way).
+            let uv = scene.texture_uv(&hit);
             Sample {
                 normal: hit.shading_normal,
-                uv: hit.tex.uv,
+                uv,
                 depth: hit.t,
                 albedo: scene.textures[m.texture].eval(&hit.tex),
                 object: hit.object as i32,
@@ -225,7 +225,8 @@ impl AovBuffers {
     /// `aov` as a picture for people. The values given here are what the PNG holds (they
     /// are stored so that sRGB encoding gives them back exactly):
     /// - normal: `0.5 + 0.5 n` per channel (x red, y green, z blue); black where nothing is hit;
-    /// - uv: red = u, green = v (their fractional parts), with darker grid lines every 0.1;
+    /// - uv: red = u, green = v (their fractional parts), with darker grid lines every 0.1
+    ///   (every 1 where the uv are not in `[0, 1]`, as with mappings in scene units);
     /// - depth: 1 (white) at the nearest hit down to 0.15 at the farthest, linearly in
     ///   distance; black where nothing is hit;
     /// - albedo: the surface colour, sRGB-encoded like the render;
@@ -248,7 +249,11 @@ impl AovBuffers {
                 Aov::Uv if hit => {
                     let uv = self.uv[i];
                     let (u, v) = (uv.x.rem_euclid(1.0), uv.y.rem_euclid(1.0));
-                    let line = |t: f32| (t * 10.0).rem_euclid(1.0) < 0.06;
+                    // Grid lines every 0.1 for uv in [0, 1] (shapes, images); every 1 for
+                    // mappings in scene units (planar, checkers), where 0.1 would be a blur.
+                    let unit = (-0.01..=1.01).contains(&uv.x) && (-0.01..=1.01).contains(&uv.y);
+                    let step = if unit { 10.0 } else { 1.0 };
+                    let line = |t: f32| (t * step).rem_euclid(1.0) < 0.06;
                     let shade = if line(uv.x) || line(uv.y) { 0.55 } else { 1.0 };
                     Color::new(u, v, 0.0) * shade
                 }

@@ -39,7 +39,8 @@ pub struct HitRecord {
     pub normal: [f32; 3],
     /// Shading normal (differs from `normal` on smooth meshes).
     pub shading_normal: [f32; 3],
-    /// The shape's texture coordinates at the hit (zero where no texture needs them).
+    /// The texture coordinates the surface's texture reads (through its mapping), or the
+    /// shape's own where the surface is a plain colour.
     pub uv: [f32; 2],
     /// `"outside"` when the ray arrives from the side the normal points to (entering a
     /// solid), `"inside"` when it leaves one.

@@ -104,7 +104,13 @@ impl Whitted {
         }
         rays.deepest = rays.deepest.max(seg.depth);
         rec.begin_ray(seg.kind, ray, seg.depth, seg.weight);
-        let Some(hit) = scene.closest_hit(ray, f32::INFINITY) else {
+        // A record shows the uv even where no texture needs it.
+        let found = if R::ACTIVE {
+            scene.closest_hit_with_uv(ray, f32::INFINITY)
+        } else {
+            scene.closest_hit(ray, f32::INFINITY)
+        };
+        let Some(hit) = found else {
             let c = match (seg.medium, scene.fog) {
                 (Some(sigma), _) if sigma != Color::ZERO => {
                     if R::ACTIVE {
@@ -426,7 +432,7 @@ fn hit_record(scene: &Scene, hit: &Hit, entering: bool, base: Color) -> HitRecor
         point: hit.point.to_array(),
         normal: hit.normal.to_array(),
         shading_normal: hit.shading_normal.to_array(),
-        uv: uv2(hit.tex.uv),
+        uv: uv2(scene.texture_uv(hit)),
         side: if entering { "outside" } else { "inside" },
         material: scene
             .material_names

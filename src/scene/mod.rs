@@ -392,6 +392,16 @@ impl Scene {
         !self.transparent_objects.is_empty()
     }
 
+    /// The uv the surface's texture reads at a hit: through its mapping (spherical, planar
+    /// ...), or the shape's own where the surface is a plain colour. For debugging tools.
+    pub fn texture_uv(&self, hit: &Hit) -> crate::math::Vec2 {
+        let texture = &self.textures[self.material_at(hit).texture];
+        match texture.pattern {
+            crate::texture::Pattern::Solid(_) => hit.tex.uv,
+            _ => texture.mapping.uv(&hit.tex),
+        }
+    }
+
     /// The material at a hit.
     #[inline]
     pub fn material_at(&self, hit: &Hit) -> &Material {

@@ -172,3 +172,68 @@ fn the_command_writes_pngs_or_exr_layers() {
     assert_eq!(o.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&o.stderr).contains("is not a debug view"));
 }
+
+/// The views of a scene at `SIZE` x `SIZE`.
+fn views_of(path: &str) -> (snell::Scene, AovBuffers) {
+    let mut scene = load(&repo(path)).unwrap();
+    scene.settings.width = SIZE;
+    scene.settings.height = SIZE;
+    let b = render_aovs(&scene, Some(2)).unwrap();
+    (scene, b)
+}
+
+#[test]
+fn the_debugging_guides_broken_scenes_show_their_bugs() {
+    // docs/debugging.md: each broken scene and what gives it away.
+    // 1. The Earth turned half round: its uv seam (u jumping by about 1) faces the camera.
+    let (scene, b) = views_of("scenes/debugging/earth-turned.toml");
+    let earth = object_index(&scene, "earth");
+    let seam_in_view = (0..b.object.len() - 1).any(|i| {
+        b.object[i] == earth
+            && b.object[i + 1] == earth
+            && (b.uv[i + 1].x - b.uv[i].x).abs() > 0.5
+            && b.normal[i].z > 0.5
+    });
+    assert!(seam_in_view, "the seam faces the camera");
+    let (_, fixed) = views_of("scenes/seed.toml");
+    let seam_in_fixed = (0..fixed.object.len() - 1).any(|i| {
+        fixed.object[i] == earth
+            && fixed.object[i + 1] == earth
+            && (fixed.uv[i + 1].x - fixed.uv[i].x).abs() > 0.5
+    });
+    assert!(!seam_in_fixed, "no seam in view once fixed");
+    // 2. The floor mapped along the wrong axis: v is the same all over the floor.
+    let (scene, b) = views_of("scenes/debugging/floor-stripes.toml");
+    let floor = object_index(&scene, "floor");
+    let vs: Vec<f32> = (0..b.object.len())
+        .filter(|&i| b.object[i] == floor)
+        .map(|i| b.uv[i].y)
+        .collect();
+    assert!(
+        vs.iter().all(|v| (v - vs[0]).abs() < 1e-3),
+        "v is constant on the floor"
+    );
+    // 3. The sunken cylinder is nowhere in the object view.
+    let (scene, b) = views_of("scenes/debugging/sunken-cylinder.toml");
+    let cylinder = object_index(&scene, "green cylinder");
+    assert!(!b.object.contains(&cylinder));
+    // 4. The glass disk: a ray through it is never refracted back out from the inside.
+    let scene = load(&repo("scenes/debugging/glass-disk.toml")).unwrap();
+    let ray = scene.camera.ray(512.5, 858.5, 1024, 1024);
+    let mut rec = snell::integrator::explain::TreeRecorder::new(500);
+    snell::integrator::Whitted.explain(
+        &scene,
+        &ray,
+        &mut snell::integrator::RayStats::default(),
+        &mut rec,
+    );
+    let tree = rec.finish().unwrap();
+    assert_eq!(tree.hit.as_ref().unwrap().object, "diamond disk");
+    fn any_inside(n: &snell::integrator::explain::RayNode) -> bool {
+        n.hit.as_ref().is_some_and(|h| h.side == "inside") || n.children.iter().any(any_inside)
+    }
+    assert!(
+        !any_inside(&tree),
+        "no surface is ever left from the inside"
+    );
+}

@@ -147,6 +147,17 @@ fn the_command_prints_the_tree_and_its_json_parses() {
     assert_eq!(doc["pixel"], serde_json::json!([512, 760]));
     assert_eq!(doc["tree"]["kind"], "camera");
     assert!(doc["tree"]["children"].is_array());
+    // Output cut short (| head) is no reason to panic.
+    let mut child = Command::new(env!("CARGO_BIN_EXE_snell"))
+        .args(["explain", "scenes/seed.toml", "--pixel", "512,760"])
+        .current_dir(repo(""))
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    drop(child.stdout.take());
+    let done = child.wait_with_output().unwrap();
+    assert!(!String::from_utf8_lossy(&done.stderr).contains("panicked"));
     for bad in [
         &["explain", "scenes/seed.toml", "--pixel", "1024,0"][..],
         &["explain", "scenes/seed.toml", "--pixel", "12"],
