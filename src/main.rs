@@ -457,6 +457,35 @@ fn render(args: RenderArgs) -> ExitCode {
             threads.unwrap_or_else(rayon::current_num_threads),
         );
     }
+    let bad = &rendered.bad_samples;
+    if bad.count > 0 && !args.quiet {
+        let places: Vec<String> = bad
+            .examples
+            .iter()
+            .take(3)
+            .map(|b| {
+                let what = match b.object {
+                    Some(i) => format!("object `{}`", scene.objects[i].name),
+                    None => "the background".to_string(),
+                };
+                let kind = if b.nan { "NaN" } else { "infinite" };
+                format!("pixel ({}, {}) on {what} ({kind})", b.x, b.y)
+            })
+            .collect();
+        eprintln!(
+            "warning: {} samples came out NaN or infinite and were left out of their pixels; {}: {}",
+            bad.count,
+            if bad.count as usize > places.len() {
+                "the first"
+            } else {
+                "at"
+            },
+            places.join("; ")
+        );
+        eprintln!(
+            "  help: look for huge or extreme values in those objects' materials and lights, and run `snell explain SCENE --pixel X,Y` on one of them"
+        );
+    }
     if args.stats {
         print_stats(&scene.stats, load_time, &rendered.rays, elapsed);
     }

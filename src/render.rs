@@ -31,6 +31,45 @@ pub struct Rendered {
     pub image: Image,
     /// The rays traced for it.
     pub rays: RayStats,
+    /// Samples that came out NaN or infinite (left out of their pixels).
+    pub bad_samples: BadSamples,
+}
+
+/// Samples whose colour came out NaN or infinite. They are left out of their pixel (which
+/// would otherwise be a black or white speck) and reported, with where they happened.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct BadSamples {
+    /// How many.
+    pub count: u64,
+    /// The first few: pixel and the object the camera ray hit first (`None`: nothing).
+    pub examples: Vec<BadSample>,
+}
+
+/// Where a bad sample happened.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BadSample {
+    /// Pixel column.
+    pub x: u32,
+    /// Pixel row.
+    pub y: u32,
+    /// Index of the object the camera ray hit first.
+    pub object: Option<usize>,
+    /// Whether the colour was NaN (otherwise infinite).
+    pub nan: bool,
+}
+
+impl BadSamples {
+    /// Examples kept.
+    pub const EXAMPLES: usize = 8;
+
+    fn add(&mut self, other: BadSamples) {
+        self.count += other.count;
+        for e in other.examples {
+            if self.examples.len() < Self::EXAMPLES {
+                self.examples.push(e);
+            }
+        }
+    }
 }
 
 /// Renders `scene` with its settings. `threads` = `None` uses every core. `progress` is
@@ -59,7 +98,7 @@ pub fn render(
     let n = tiles_x * tiles_y;
     let step = scatter_step(n);
     let tile_of = |k: u32| ((k as u64 * step as u64) % n as u64) as u32;
-    let tiles: Vec<(Vec<Color>, RayStats)> = pool.install(|| {
+    let tiles: Vec<(Vec<Color>, RayStats, BadSamples)> = pool.install(|| {
         (0..n)
             .into_par_iter()
             .map(|k| {
@@ -68,21 +107,28 @@ pub fn render(
                 let (x1, y1) = ((x0 + TILE).min(w), (y0 + TILE).min(h));
                 let mut out = Vec::with_capacity(((x1 - x0) * (y1 - y0)) as usize);
                 let mut rays = RayStats::default();
+                let mut bad = BadSamples::default();
                 for y in y0..y1 {
                     for x in x0..x1 {
-                        out.push(render_pixel(scene, integrator, x, y, &mut rays));
+                        out.push(render_pixel(scene, integrator, x, y, &mut rays, &mut bad));
                     }
                 }
                 let n = done.fetch_add(out.len() as u64, Ordering::Relaxed) + out.len() as u64;
                 progress(n);
-                (out, rays)
+                (out, rays, bad)
             })
             .collect()
     });
     let mut image = Image::new(w, h);
     let mut rays = RayStats::default();
-    for (k, (tile, tile_rays)) in tiles.into_iter().enumerate() {
+    let mut bad_samples = BadSamples::default();
+    // In tile index order, so the examples are the same at any thread count.
+    let mut ordered: Vec<(u32, BadSamples)> = vec![];
+    for (k, (tile, tile_rays, tile_bad)) in tiles.into_iter().enumerate() {
         rays += tile_rays;
+        if tile_bad.count > 0 {
+            ordered.push((tile_of(k as u32), tile_bad));
+        }
         let i = tile_of(k as u32);
         let (x0, y0) = ((i % tiles_x) * TILE, (i / tiles_x) * TILE);
         let tw = (x0 + TILE).min(w) - x0;
@@ -91,7 +137,15 @@ pub fn render(
             image.pixels[(y * w + x) as usize] = c;
         }
     }
-    Ok(Rendered { image, rays })
+    ordered.sort_by_key(|(i, _)| *i);
+    for (_, b) in ordered {
+        bad_samples.add(b);
+    }
+    Ok(Rendered {
+        image,
+        rays,
+        bad_samples,
+    })
 }
 
 /// A step coprime with `n` near `n / phi`: `k * step mod n` then visits every index once,
@@ -138,13 +192,28 @@ pub fn render_pixel(
     x: u32,
     y: u32,
     rays: &mut RayStats,
+    bad: &mut BadSamples,
 ) -> Color {
     let s = &scene.settings;
     let (mut sum, mut weight, mut unsigned) = (Color::ZERO, 0.0f32, Color::ZERO);
     for_each_sample(s, x, y, |px, py, sign| {
-        let c = integrator.radiance(scene, &scene.camera.ray(px, py, s.width, s.height), rays);
-        // A non-finite sample would poison the whole pixel; drop it.
-        let c = if c.is_finite() { c } else { Color::ZERO };
+        let ray = scene.camera.ray(px, py, s.width, s.height);
+        let c = integrator.radiance(scene, &ray, rays);
+        // A non-finite sample would poison the whole pixel: leave it out, and say where.
+        let c = if c.is_finite() {
+            c
+        } else {
+            bad.count += 1;
+            if bad.examples.len() < BadSamples::EXAMPLES {
+                bad.examples.push(BadSample {
+                    x,
+                    y,
+                    object: scene.closest_hit(&ray, f32::INFINITY).map(|h| h.object),
+                    nan: c.is_nan(),
+                });
+            }
+            Color::ZERO
+        };
         sum += c * sign;
         weight += sign;
         unsigned += c;

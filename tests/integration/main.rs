@@ -8,6 +8,7 @@ mod explain;
 mod meshes;
 mod optics;
 mod renders;
+mod robustness;
 mod shading;
 
 use std::path::{Path, PathBuf};
