@@ -17,6 +17,7 @@
 
 pub mod accel;
 pub mod camera;
+pub mod checkpoint;
 pub mod film;
 pub mod geometry;
 pub mod integrator;

@@ -3,14 +3,17 @@
 
 use clap::{Args, Parser, Subcommand};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use snell::checkpoint::Checkpoint;
 use snell::integrator::Whitted;
 use snell::integrator::aov::{Aov, render_aovs};
 use snell::integrator::explain::TreeRecorder;
 use snell::output::{ExrLayer, OutputError, OutputFormat, PendingOutput, encode_exr_layers};
+use snell::render::{RenderOptions, TileStore};
 use snell::scene::{RenderSettings, SceneError};
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
+use std::sync::atomic::{AtomicBool, AtomicU32, Ordering};
 use std::time::Instant;
 
 /// `print!` that never panics: output cut short (a closed pipe, as with `| head`) is not
@@ -42,7 +45,8 @@ Examples:
   snell explain scenes/seed.toml --pixel 512,760
                                                 the tree of rays behind one pixel
 
-Exit codes: 0 done, 1 rendering or writing failed, 2 bad command line or scene.
+Exit codes: 0 done, 1 rendering or writing failed, 2 bad command line or scene,
+130 interrupted (Ctrl-C or SIGTERM; the tiles finished were written).
 The scene format is documented key by key in docs/scene-format.md.";
 
 /// snell renders images from scene files (TOML or JSON) by ray tracing.
@@ -75,8 +79,9 @@ enum Command {
 
 #[derive(Args, Debug)]
 struct RenderArgs {
-    /// The scene file (.toml or .json).
-    scene: PathBuf,
+    /// The scene file (.toml or .json); with --resume, the checkpoint names it.
+    #[arg(required_unless_present = "resume")]
+    scene: Option<PathBuf>,
     /// Output image; .png or .exr picks the format [default: the scene's name with .png,
     /// in the current folder].
     #[arg(short, long, value_name = "OUT")]
@@ -108,6 +113,40 @@ struct RenderArgs {
     /// file (seed.normal.png ...); with .exr, all go into the one file as layers.
     #[arg(long, value_name = "NAMES", value_delimiter = ',', value_parser = parse_aov)]
     aov: Vec<Vec<Aov>>,
+    /// Save progress to FILE while rendering (and when interrupted), so the render can be
+    /// continued with --resume FILE. Removed once the render is complete.
+    #[arg(long, value_name = "FILE")]
+    checkpoint: Option<PathBuf>,
+    /// Continue the render saved in FILE (scene, size, samples, seed and output come from
+    /// it); the result is the same, byte for byte, as a render never stopped.
+    #[arg(long, value_name = "FILE")]
+    resume: Option<PathBuf>,
+    /// Seconds between checkpoints.
+    #[arg(long, value_name = "SECS", default_value_t = 30.0)]
+    checkpoint_every: f64,
+}
+
+/// Exit code of a render stopped by Ctrl-C or SIGTERM (after writing what was done).
+const EXIT_INTERRUPTED: u8 = 130;
+
+/// Set by the first Ctrl-C or SIGTERM: tiles not yet started are skipped.
+static STOP: AtomicBool = AtomicBool::new(false);
+/// Signals received.
+static SIGNALS: AtomicU32 = AtomicU32::new(0);
+
+/// First Ctrl-C (or SIGTERM): stop after the tiles under way and write what is done.
+/// Second: exit at once.
+fn handle_interrupts() {
+    let _ = ctrlc::set_handler(|| {
+        if SIGNALS.fetch_add(1, Ordering::SeqCst) > 0 {
+            eprintln!("\ninterrupted again: stopping now, without writing the image");
+            std::process::exit(EXIT_INTERRUPTED as i32);
+        }
+        STOP.store(true, Ordering::SeqCst);
+        eprintln!(
+            "\ninterrupted: finishing the tiles under way, then writing what is done (Ctrl-C again stops at once)"
+        );
+    });
 }
 
 fn parse_aov(s: &str) -> Result<Vec<Aov>, String> {
@@ -333,13 +372,31 @@ fn usage_error(msg: &str, help: Option<&str>) -> ExitCode {
 }
 
 fn render(args: RenderArgs) -> ExitCode {
+    let resumed = match &args.resume {
+        None => None,
+        Some(path) => match Checkpoint::load(path) {
+            Ok(c) => Some(c),
+            Err(e) => return usage_error(&e, None),
+        },
+    };
+    let scene_path = match (&args.scene, &resumed) {
+        (Some(p), _) => p.clone(),
+        (None, Some(c)) => c.scene.clone(),
+        (None, None) => return usage_error("give a scene file", None),
+    };
     let load_start = Instant::now();
-    let mut scene = match load(&args.scene) {
+    let mut scene = match load(&scene_path) {
         Ok(s) => s,
         Err(code) => return code,
     };
     let load_time = load_start.elapsed();
     let s = &mut scene.settings;
+    if let Some(c) = &resumed {
+        s.width = c.width;
+        s.height = c.height;
+        s.spp = c.spp;
+        s.seed = c.seed;
+    }
     if let Some(w) = args.width {
         s.width = w;
     }
@@ -363,12 +420,39 @@ fn render(args: RenderArgs) -> ExitCode {
     if let Err((e, help)) = RenderSettings::check_spp(s.spp) {
         return usage_error(&e, help.as_deref());
     }
-    let out_path = args.output.clone().unwrap_or_else(|| {
-        // `cap.day.toml` gives `cap.day.png` (with_extension would cut it to `cap.png`).
-        let mut name = args.scene.file_stem().unwrap_or_default().to_os_string();
-        name.push(".png");
-        PathBuf::from(name)
-    });
+    let scene_bytes = std::fs::read(&scene_path).unwrap_or_default();
+    let fingerprint = snell::checkpoint::fingerprint(
+        &scene_bytes,
+        scene.settings.width,
+        scene.settings.height,
+        scene.settings.spp,
+        scene.settings.seed,
+    );
+    if let Some(c) = &resumed
+        && c.fingerprint != fingerprint
+    {
+        return usage_error(
+            "the scene file or the settings changed since the checkpoint was saved, so resuming would not give the same picture",
+            Some("render again without --resume, or restore the scene as it was"),
+        );
+    }
+    let out_path = args
+        .output
+        .clone()
+        .or_else(|| resumed.as_ref().map(|c| c.output.clone()))
+        .unwrap_or_else(|| {
+            // `cap.day.toml` gives `cap.day.png` (with_extension would cut it to `cap.png`).
+            let mut name = scene_path.file_stem().unwrap_or_default().to_os_string();
+            name.push(".png");
+            PathBuf::from(name)
+        });
+    let checkpoint_path = args.checkpoint.clone().or_else(|| args.resume.clone());
+    if !(args.checkpoint_every > 0.0 && args.checkpoint_every.is_finite()) {
+        return usage_error(
+            "--checkpoint-every must be a positive number of seconds",
+            None,
+        );
+    }
     let pending = match PendingOutput::create(&out_path) {
         Ok(p) => p,
         Err(e @ OutputError::UnknownFormat(_)) => return usage_error(&e.to_string(), None),
@@ -421,8 +505,51 @@ fn render(args: RenderArgs) -> ExitCode {
     };
     let start = Instant::now();
     let threads = args.threads.map(usize::from);
-    let rendered = match snell::render::render(&scene, &Whitted, threads, &|n| bar.set_position(n))
-    {
+    handle_interrupts();
+    let store = TileStore::new(resumed.map(|c| c.tiles).unwrap_or_default());
+    let snapshot = |tiles| Checkpoint {
+        fingerprint,
+        width: scene.settings.width,
+        height: scene.settings.height,
+        spp: scene.settings.spp,
+        seed: scene.settings.seed,
+        scene: std::fs::canonicalize(&scene_path).unwrap_or_else(|_| scene_path.clone()),
+        output: std::path::absolute(&out_path).unwrap_or_else(|_| out_path.clone()),
+        tiles,
+    };
+    let finished = AtomicBool::new(false);
+    let rendered = std::thread::scope(|scope| {
+        // Checkpoints are written from their own thread, every few seconds.
+        if let Some(path) = &checkpoint_path {
+            let (store, finished, snapshot) = (&store, &finished, &snapshot);
+            let every = std::time::Duration::from_secs_f64(args.checkpoint_every);
+            scope.spawn(move || {
+                let mut last = Instant::now();
+                while !finished.load(Ordering::SeqCst) {
+                    std::thread::sleep(std::time::Duration::from_millis(50));
+                    if last.elapsed() >= every {
+                        if let Err(e) = snapshot(store.snapshot()).save(path) {
+                            eprintln!(
+                                "warning: cannot save the checkpoint {}: {e}",
+                                path.display()
+                            );
+                        }
+                        last = Instant::now();
+                    }
+                }
+            });
+        }
+        let options = RenderOptions {
+            threads,
+            progress: &|n| bar.set_position(n),
+            cancel: Some(&STOP),
+            store: Some(&store),
+        };
+        let r = snell::render::render_with(&scene, &Whitted, &options);
+        finished.store(true, Ordering::SeqCst);
+        r
+    });
+    let rendered = match rendered {
         Ok(r) => r,
         Err(e) => {
             bar.abandon();
@@ -447,6 +574,26 @@ fn render(args: RenderArgs) -> ExitCode {
     if let Err(e) = written {
         eprintln!("error: {e}");
         return ExitCode::from(1);
+    }
+    if !rendered.complete() {
+        let resume = match &checkpoint_path {
+            Some(path) => match snapshot(store.snapshot()).save(path) {
+                Ok(()) => format!("; continue with: snell render --resume {}", path.display()),
+                Err(e) => format!("; the checkpoint could not be saved: {e}"),
+            },
+            None => String::new(),
+        };
+        eprintln!(
+            "interrupted: wrote {} with {} of {} tiles rendered (the rest are black){resume}",
+            out_path.display(),
+            rendered.tiles_done,
+            rendered.tiles_total
+        );
+        return ExitCode::from(EXIT_INTERRUPTED);
+    }
+    if let Some(path) = &checkpoint_path {
+        // The render is whole: its checkpoint has nothing left to continue.
+        let _ = std::fs::remove_file(path);
     }
     if !args.quiet {
         let samples = pixels * spp as u64;

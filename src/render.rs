@@ -6,7 +6,9 @@ use crate::integrator::{Integrator, RayStats};
 use crate::math::{Color, Rng, hash_seed};
 use crate::scene::{RenderSettings, Scene};
 use rayon::prelude::*;
-use std::sync::atomic::{AtomicU64, Ordering};
+use std::collections::BTreeMap;
+use std::sync::Mutex;
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 
 /// Side of a square tile, in pixels.
 pub const TILE: u32 = 16;
@@ -33,6 +35,17 @@ pub struct Rendered {
     pub rays: RayStats,
     /// Samples that came out NaN or infinite (left out of their pixels).
     pub bad_samples: BadSamples,
+    /// Tiles in the image (finished before, in a resumed render, included).
+    pub tiles_done: u32,
+    /// Tiles in all.
+    pub tiles_total: u32,
+}
+
+impl Rendered {
+    /// Whether every tile was rendered (a cancelled render leaves some black).
+    pub fn complete(&self) -> bool {
+        self.tiles_done == self.tiles_total
+    }
 }
 
 /// Samples whose colour came out NaN or infinite. They are left out of their pixel (which
@@ -72,6 +85,55 @@ impl BadSamples {
     }
 }
 
+/// Tiles already rendered, by tile index (row-major over the image's 16 x 16 tiles), each
+/// its pixels row by row. A render skips the tiles it holds and adds the ones it finishes, so
+/// a render can be checkpointed while it runs and resumed later with the same result.
+#[derive(Debug, Default)]
+pub struct TileStore {
+    tiles: Mutex<BTreeMap<u32, Vec<Color>>>,
+}
+
+impl TileStore {
+    /// A store holding `tiles`.
+    pub fn new(tiles: BTreeMap<u32, Vec<Color>>) -> Self {
+        TileStore {
+            tiles: Mutex::new(tiles),
+        }
+    }
+
+    /// A copy of the tiles finished so far.
+    pub fn snapshot(&self) -> BTreeMap<u32, Vec<Color>> {
+        self.lock().clone()
+    }
+
+    /// How many tiles are finished.
+    pub fn len(&self) -> usize {
+        self.lock().len()
+    }
+
+    /// Whether no tile is finished.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    fn lock(&self) -> std::sync::MutexGuard<'_, BTreeMap<u32, Vec<Color>>> {
+        // A panic elsewhere cannot leave a half-inserted tile: the map is still whole.
+        self.tiles.lock().unwrap_or_else(|e| e.into_inner())
+    }
+}
+
+/// How a render is run.
+pub struct RenderOptions<'a> {
+    /// Render threads; `None` uses every core.
+    pub threads: Option<usize>,
+    /// Called from the worker threads with the number of pixels finished so far.
+    pub progress: &'a (dyn Fn(u64) + Sync),
+    /// Set to stop: tiles not yet started are skipped, tiles under way finish.
+    pub cancel: Option<&'a AtomicBool>,
+    /// Tiles done before (skipped), and where finished tiles are added.
+    pub store: Option<&'a TileStore>,
+}
+
 /// Renders `scene` with its settings. `threads` = `None` uses every core. `progress` is
 /// called from the worker threads with the number of pixels finished so far.
 pub fn render(
@@ -80,6 +142,26 @@ pub fn render(
     threads: Option<usize>,
     progress: &(dyn Fn(u64) + Sync),
 ) -> Result<Rendered, RenderError> {
+    render_with(
+        scene,
+        integrator,
+        &RenderOptions {
+            threads,
+            progress,
+            cancel: None,
+            store: None,
+        },
+    )
+}
+
+/// Renders `scene` as `options` say. Tiles skipped because of `cancel` are black in the
+/// image; [`Rendered::complete`] says whether every tile is there.
+pub fn render_with(
+    scene: &Scene,
+    integrator: &dyn Integrator,
+    options: &RenderOptions,
+) -> Result<Rendered, RenderError> {
+    let threads = options.threads;
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(threads.unwrap_or(0))
         .build()
@@ -91,20 +173,38 @@ pub fn render(
     let (w, h) = (s.width, s.height);
     let tiles_x = w.div_ceil(TILE);
     let tiles_y = h.div_ceil(TILE);
-    let done = AtomicU64::new(0);
+    let n = tiles_x * tiles_y;
+    let tile_rect = |i: u32| {
+        let (x0, y0) = ((i % tiles_x) * TILE, (i / tiles_x) * TILE);
+        (x0, y0, (x0 + TILE).min(w), (y0 + TILE).min(h))
+    };
+    let earlier = options.store.map(|st| st.snapshot()).unwrap_or_default();
+    let done = AtomicU64::new(
+        earlier
+            .keys()
+            .filter(|&&i| i < n)
+            .map(|&i| {
+                let (x0, y0, x1, y1) = tile_rect(i);
+                ((x1 - x0) * (y1 - y0)) as u64
+            })
+            .sum(),
+    );
     // Visit the tiles in a scattered order, so every stretch of work mixes sky and busy
     // regions and the progress bar's ETA holds steady; results are placed by tile index, so
     // the image does not depend on the order.
-    let n = tiles_x * tiles_y;
     let step = scatter_step(n);
     let tile_of = |k: u32| ((k as u64 * step as u64) % n as u64) as u32;
-    let tiles: Vec<(Vec<Color>, RayStats, BadSamples)> = pool.install(|| {
+    let tiles: Vec<Option<(Vec<Color>, RayStats, BadSamples)>> = pool.install(|| {
         (0..n)
             .into_par_iter()
             .map(|k| {
                 let i = tile_of(k);
-                let (x0, y0) = ((i % tiles_x) * TILE, (i / tiles_x) * TILE);
-                let (x1, y1) = ((x0 + TILE).min(w), (y0 + TILE).min(h));
+                if earlier.contains_key(&i)
+                    || options.cancel.is_some_and(|c| c.load(Ordering::Relaxed))
+                {
+                    return None;
+                }
+                let (x0, y0, x1, y1) = tile_rect(i);
                 let mut out = Vec::with_capacity(((x1 - x0) * (y1 - y0)) as usize);
                 let mut rays = RayStats::default();
                 let mut bad = BadSamples::default();
@@ -113,29 +213,47 @@ pub fn render(
                         out.push(render_pixel(scene, integrator, x, y, &mut rays, &mut bad));
                     }
                 }
+                if let Some(st) = options.store {
+                    st.lock().insert(i, out.clone());
+                }
                 let n = done.fetch_add(out.len() as u64, Ordering::Relaxed) + out.len() as u64;
-                progress(n);
-                (out, rays, bad)
+                (options.progress)(n);
+                Some((out, rays, bad))
             })
             .collect()
     });
     let mut image = Image::new(w, h);
     let mut rays = RayStats::default();
     let mut bad_samples = BadSamples::default();
+    let mut place = |i: u32, tile: &[Color]| {
+        let (x0, y0, x1, _) = tile_rect(i);
+        let tw = x1 - x0;
+        for (k, c) in tile.iter().enumerate() {
+            let (x, y) = (x0 + k as u32 % tw, y0 + k as u32 / tw);
+            image.pixels[(y * w + x) as usize] = *c;
+        }
+    };
+    let mut finished = 0;
+    for (&i, tile) in earlier.iter().filter(|(i, _)| **i < n) {
+        let (x0, y0, x1, y1) = tile_rect(i);
+        if tile.len() == ((x1 - x0) * (y1 - y0)) as usize {
+            place(i, tile);
+            finished += 1;
+        }
+    }
     // In tile index order, so the examples are the same at any thread count.
     let mut ordered: Vec<(u32, BadSamples)> = vec![];
-    for (k, (tile, tile_rays, tile_bad)) in tiles.into_iter().enumerate() {
+    for (k, t) in tiles.into_iter().enumerate() {
+        let Some((tile, tile_rays, tile_bad)) = t else {
+            continue;
+        };
+        let i = tile_of(k as u32);
         rays += tile_rays;
         if tile_bad.count > 0 {
-            ordered.push((tile_of(k as u32), tile_bad));
+            ordered.push((i, tile_bad));
         }
-        let i = tile_of(k as u32);
-        let (x0, y0) = ((i % tiles_x) * TILE, (i / tiles_x) * TILE);
-        let tw = (x0 + TILE).min(w) - x0;
-        for (k, c) in tile.into_iter().enumerate() {
-            let (x, y) = (x0 + k as u32 % tw, y0 + k as u32 / tw);
-            image.pixels[(y * w + x) as usize] = c;
-        }
+        place(i, &tile);
+        finished += 1;
     }
     ordered.sort_by_key(|(i, _)| *i);
     for (_, b) in ordered {
@@ -145,6 +263,8 @@ pub fn render(
         image,
         rays,
         bad_samples,
+        tiles_done: finished,
+        tiles_total: n,
     })
 }
 

@@ -84,3 +84,109 @@ fn the_command_warns_about_them() {
     );
     assert!(dir.join("hot.png").exists());
 }
+
+/// Ctrl-C or SIGTERM during a render writes the tiles finished so far, saves the
+/// checkpoint and exits 130; resuming gives the same bytes as a render never stopped.
+#[cfg(unix)]
+#[test]
+fn an_interrupted_render_resumes_to_the_same_bytes() {
+    let dir = scratch("interrupt");
+    let scene = super::repo("scenes/seed.toml");
+    let scene = scene.to_str().unwrap();
+    let size = ["--width", "384", "--height", "384", "--spp", "16", "-q"];
+    let snell = || Command::new(env!("CARGO_BIN_EXE_snell"));
+    let whole = snell()
+        .args([&["render", scene, "-o", "whole.png"][..], &size].concat())
+        .current_dir(&dir)
+        .output()
+        .unwrap();
+    assert_eq!(whole.status.code(), Some(0));
+    let child = snell()
+        .args(
+            [
+                &["render", scene, "-o", "part.png", "--checkpoint", "c.ckpt"][..],
+                &["--checkpoint-every", "0.05"],
+                &size,
+            ]
+            .concat(),
+        )
+        .current_dir(&dir)
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    // Stop it once it has saved some progress.
+    let start = std::time::Instant::now();
+    while !dir.join("c.ckpt").exists() && start.elapsed().as_secs() < 60 {
+        std::thread::sleep(std::time::Duration::from_millis(10));
+    }
+    let killed = Command::new("kill")
+        .args(["-TERM", &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(killed.success());
+    let out = child.wait_with_output().unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(130), "{err}");
+    assert!(err.contains("interrupted: wrote part.png with"), "{err}");
+    assert!(err.contains("snell render --resume c.ckpt"), "{err}");
+    // The partial image is a valid picture of the right size.
+    let part = image::open(dir.join("part.png")).unwrap();
+    assert_eq!((part.width(), part.height()), (384, 384));
+    // Resume from the checkpoint alone: scene, size, samples and output come from it.
+    let resumed = snell()
+        .args(["render", "--resume", "c.ckpt", "-q"])
+        .current_dir(&dir)
+        .output()
+        .unwrap();
+    assert_eq!(
+        resumed.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&resumed.stderr)
+    );
+    assert!(
+        std::fs::read(dir.join("part.png")).unwrap()
+            == std::fs::read(dir.join("whole.png")).unwrap(),
+        "the resumed render differs from the uninterrupted one"
+    );
+    assert!(
+        !dir.join("c.ckpt").exists(),
+        "a finished render removes its checkpoint"
+    );
+}
+
+#[test]
+fn a_checkpoint_of_another_scene_or_size_is_refused() {
+    let dir = scratch("resume-mismatch");
+    let scene = super::repo("tests/scenes/small.toml");
+    let scene = scene.to_str().unwrap();
+    let snell = || Command::new(env!("CARGO_BIN_EXE_snell"));
+    // A checkpoint saved for this scene at 40 x 30 (a complete render removes it, so make
+    // one by hand from an empty render).
+    let c = snell::checkpoint::Checkpoint {
+        fingerprint: 1,
+        width: 40,
+        height: 30,
+        spp: 1,
+        seed: 0,
+        scene: scene.into(),
+        output: dir.join("o.png"),
+        tiles: Default::default(),
+    };
+    c.save(&dir.join("c.ckpt")).unwrap();
+    let o = snell()
+        .args(["render", "--resume", "c.ckpt"])
+        .current_dir(&dir)
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("changed since the checkpoint"));
+    std::fs::write(dir.join("junk.ckpt"), b"not a checkpoint").unwrap();
+    let o = snell()
+        .args(["render", "--resume", "junk.ckpt"])
+        .current_dir(&dir)
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("is not a snell checkpoint"));
+}
