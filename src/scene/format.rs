@@ -233,12 +233,13 @@ pub enum ColorSpaceDef {
 }
 
 /// `mapping = { type = "...", ... }`.
-#[derive(Debug, Default, Deserialize)]
+#[derive(Debug, Deserialize)]
 #[serde(tag = "type", rename_all = "lowercase", deny_unknown_fields)]
 pub enum MappingDef {
     /// The shape's own uv.
-    #[default]
-    Uv,
+    // `{}`, not a unit variant: serde lets other keys through beside the tag of a unit
+    // variant, even with deny_unknown_fields.
+    Uv {},
     /// Equirectangular around a centre.
     Spherical {
         /// Centre in object space (default: the object's centre).
@@ -270,6 +271,12 @@ pub enum MappingDef {
         #[serde(default = "z_axis")]
         v: V3,
     },
+}
+
+impl Default for MappingDef {
+    fn default() -> Self {
+        MappingDef::Uv {}
+    }
 }
 
 /// `[materials.NAME]`.
