@@ -46,6 +46,11 @@ enum Command {
         /// The scene file (.toml or .json).
         scene: PathBuf,
     },
+    /// Print the scene format's JSON Schema, for editors: `snell schema > snell.schema.json`.
+    ///
+    /// With it, editors complete keys and flag mistakes in scene files as one types;
+    /// docs/scene-format.md ("Editor support") shows how to hook it up.
+    Schema,
 }
 
 #[derive(Args, Debug)]
@@ -85,6 +90,18 @@ fn main() -> ExitCode {
     match cli.command {
         Command::Render(args) => render(args),
         Command::Check { scene } => check(&scene),
+        Command::Schema => schema(),
+    }
+}
+
+fn schema() -> ExitCode {
+    use std::io::Write;
+    let text = serde_json::to_string_pretty(&snell::scene::schema())
+        .expect("a JSON value always serializes");
+    // writeln, not println: `snell schema | head` must not panic on the closed pipe.
+    match writeln!(std::io::stdout(), "{text}") {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(_) => ExitCode::from(1),
     }
 }
 
