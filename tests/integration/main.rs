@@ -1,11 +1,12 @@
 //! Integration tests, built as one test binary: the command line, whole renders (golden
-//! images, determinism) and optics through a built scene.
+//! images, determinism), optics through a built scene, and the scene's JSON Schema.
 
 mod bad;
 mod cli;
 mod meshes;
 mod optics;
 mod renders;
+mod schema;
 mod shading;
 
 use std::path::{Path, PathBuf};
