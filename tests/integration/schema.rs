@@ -696,3 +696,12 @@ fn within(inner: &str, outer: &str) -> bool {
                 .strip_prefix(outer)
                 .is_some_and(|rest| rest.starts_with(['.', '['])))
 }
+
+/// docs/scene-format.md owns up to this one: JSON Schema's `integer` takes `800.0`, serde's
+/// `u32` does not. If this ever fails, the schema got stricter: update the page.
+#[test]
+fn a_whole_number_written_with_a_point_passes_the_schema_but_not_snell() {
+    let scene = json!({ "image": { "width": 800.0 }, "camera": { "look_at": [0, 0, -1] } });
+    assert_eq!(problems(&scene), vec![]);
+    assert!(parses(&scene).is_err());
+}
