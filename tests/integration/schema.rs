@@ -128,17 +128,21 @@ fn doc_path(pointer: &str) -> String {
     out
 }
 
-/// Every scene we ship: scenes/ and tests/scenes/.
+/// Every scene we ship: under scenes/ (subfolders too) and tests/scenes/.
 fn shipped_scenes() -> Vec<PathBuf> {
-    let mut files = vec![];
-    for dir in ["scenes", "tests/scenes"] {
-        for entry in std::fs::read_dir(repo(dir)).unwrap() {
+    fn walk(dir: &Path, files: &mut Vec<PathBuf>) {
+        for entry in std::fs::read_dir(dir).unwrap() {
             let path = entry.unwrap().path();
-            if path.extension().is_some_and(|e| e == "toml" || e == "json") {
+            if path.is_dir() {
+                walk(&path, files);
+            } else if path.extension().is_some_and(|e| e == "toml" || e == "json") {
                 files.push(path);
             }
         }
     }
+    let mut files = vec![];
+    walk(&repo("scenes"), &mut files);
+    walk(&repo("tests/scenes"), &mut files);
     files.sort();
     files
 }
