@@ -2,10 +2,10 @@
 //! its distance from the pixel centre.
 
 use crate::math::Color;
-use serde::Deserialize;
+use serde::{Deserialize, Serialize};
 
 /// Reconstruction filter shapes.
-#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Deserialize, Serialize, schemars::JsonSchema, PartialEq, Eq)]
 #[serde(rename_all = "lowercase")]
 pub enum FilterKind {
     /// Equal weight over the support (default radius 0.5: the pixel itself).

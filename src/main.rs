@@ -75,6 +75,11 @@ enum Command {
     /// ray hit, the material's terms, every light and its shadow ray, the Fresnel split and
     /// the colour each ray returns.
     Explain(ExplainArgs),
+    /// Print the scene format's JSON Schema, for editors: `snell schema > snell.schema.json`.
+    ///
+    /// With it, editors complete keys and flag mistakes in scene files as one types;
+    /// docs/scene-format.md ("Editor support") shows how to hook it up.
+    Schema,
 }
 
 #[derive(Args, Debug)]
@@ -213,6 +218,18 @@ fn main() -> ExitCode {
         Command::Render(args) => render(args),
         Command::Check { scene } => check(&scene),
         Command::Explain(args) => explain(args),
+        Command::Schema => schema(),
+    }
+}
+
+fn schema() -> ExitCode {
+    use std::io::Write;
+    let text = serde_json::to_string_pretty(&snell::scene::schema())
+        .expect("a JSON value always serializes");
+    // writeln, not println: `snell schema | head` must not panic on the closed pipe.
+    match writeln!(std::io::stdout(), "{text}") {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(_) => ExitCode::from(1),
     }
 }
 

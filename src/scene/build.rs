@@ -256,7 +256,7 @@ fn serde_problem(
         p.help = Some(
             match did_you_mean(field, expected.iter().map(String::as_str)) {
                 Some(s) => format!("did you mean `{s}`?"),
-                None if expected.is_empty() => "this table takes no keys".to_string(),
+                None if expected.is_empty() => "no other key belongs here".to_string(),
                 None => format!("known keys here: {}", expected.join(", ")),
             },
         );
@@ -791,7 +791,7 @@ impl Builder<'_> {
 
     fn mapping(&mut self, d: &MappingDef, path: &DocPath) -> Mapping {
         match d {
-            MappingDef::Uv => Mapping::Uv,
+            MappingDef::Uv {} => Mapping::Uv,
             MappingDef::Spherical { center, rotate } => {
                 let center = center.map(|c| self.point(c, &path.key("center")));
                 let r = self.point(*rotate, &path.key("rotate"));

@@ -1,9 +1,13 @@
 //! The scene file, one to one: serde types for TOML and JSON. Every table rejects keys it
 //! does not know. Defaults live here, checks of values live in `build`. docs/scene-format.md
-//! documents every key.
+//! documents every key. The same types give the scene's JSON Schema ([`schema`]): field docs
+//! become its descriptions, serde defaults its defaults (shown where the default's type is
+//! `Serialize`, which is why a few of these derive it).
 
-use serde::Deserialize;
+use schemars::{JsonSchema, Schema, SchemaGenerator, json_schema};
 use serde::de::{self, Deserializer, SeqAccess, Visitor};
+use serde::{Deserialize, Serialize};
+use std::borrow::Cow;
 use std::collections::BTreeMap;
 use std::fmt;
 
@@ -11,9 +15,18 @@ use std::fmt;
 pub type V3 = [f32; 3];
 
 /// A whole scene file.
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
+#[schemars(
+    title = "snell scene",
+    description = "A scene for the snell ray tracer, in TOML or JSON. docs/scene-format.md \
+                   documents every key."
+)]
 pub struct SceneFile {
+    /// Where this file's JSON Schema is, for editors (`snell schema` writes one); snell
+    /// itself ignores it.
+    #[serde(rename = "$schema")]
+    pub schema: Option<String>,
     /// Picture size, sampling and limits.
     #[serde(default)]
     pub image: ImageDef,
@@ -42,7 +55,7 @@ pub struct SceneFile {
 }
 
 /// `[meshes.NAME]`: a mesh file, loaded once however many objects place it.
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct MeshDef {
     /// OBJ or PLY file, relative to the scene file.
@@ -53,7 +66,7 @@ pub struct MeshDef {
 }
 
 /// `[image]`.
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct ImageDef {
     /// Width in pixels.
@@ -87,13 +100,14 @@ impl Default for ImageDef {
 }
 
 /// `filter = { type = "...", radius = ... }`.
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Deserialize, Serialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct FilterDef {
     /// Filter shape.
     #[serde(rename = "type")]
     pub kind: FilterKind,
     /// Half-width in pixels; default depends on the type.
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub radius: Option<f32>,
 }
 
@@ -109,7 +123,7 @@ impl Default for FilterDef {
 pub use crate::film::FilterKind;
 
 /// `[camera]`.
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct CameraDef {
     /// Eye position.
@@ -126,7 +140,7 @@ pub struct CameraDef {
 }
 
 /// `[world]`.
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields, default)]
 pub struct WorldDef {
     /// Global ambient light.
@@ -142,7 +156,7 @@ impl Default for WorldDef {
 }
 
 /// `[fog]`.
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct FogDef {
     /// How fog thickens with distance.
@@ -160,7 +174,7 @@ pub struct FogDef {
 }
 
 /// Fog modes.
-#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Deserialize, JsonSchema, PartialEq, Eq)]
 #[serde(rename_all = "lowercase")]
 pub enum FogMode {
     /// Rises linearly from `start` to `end`.
@@ -170,7 +184,7 @@ pub enum FogMode {
 }
 
 /// `[textures.NAME]`.
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Deserialize, JsonSchema)]
 #[serde(tag = "type", rename_all = "lowercase", deny_unknown_fields)]
 pub enum TextureDef {
     /// One colour.
@@ -222,7 +236,7 @@ pub enum TextureDef {
 }
 
 /// Colour space of image files.
-#[derive(Clone, Copy, Debug, Default, Deserialize, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Default, Deserialize, Serialize, JsonSchema, PartialEq, Eq)]
 #[serde(rename_all = "lowercase")]
 pub enum ColorSpaceDef {
     /// sRGB-encoded.
@@ -233,12 +247,13 @@ pub enum ColorSpaceDef {
 }
 
 /// `mapping = { type = "...", ... }`.
-#[derive(Debug, Default, Deserialize)]
+#[derive(Debug, Deserialize, Serialize, JsonSchema)]
 #[serde(tag = "type", rename_all = "lowercase", deny_unknown_fields)]
 pub enum MappingDef {
     /// The shape's own uv.
-    #[default]
-    Uv,
+    // `{}`, not a unit variant: serde lets other keys through beside the tag of a unit
+    // variant, even with deny_unknown_fields.
+    Uv {},
     /// Equirectangular around a centre.
     Spherical {
         /// Centre in object space (default: the object's centre).
@@ -272,8 +287,14 @@ pub enum MappingDef {
     },
 }
 
+impl Default for MappingDef {
+    fn default() -> Self {
+        MappingDef::Uv {}
+    }
+}
+
 /// `[materials.NAME]`.
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct MaterialDef {
     /// Surface colour (or use `texture`).
@@ -307,7 +328,7 @@ pub struct MaterialDef {
 }
 
 /// `[[lights]]`.
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Deserialize, JsonSchema)]
 #[serde(tag = "type", rename_all = "lowercase", deny_unknown_fields)]
 pub enum LightDef {
     /// A point light.
@@ -356,7 +377,7 @@ pub enum LightDef {
 }
 
 /// `transform = { ... }`: scale, then rotate (x, y, z, degrees), then translate.
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct TransformDef {
     /// Scale: a number or `[x, y, z]`.
@@ -373,14 +394,14 @@ pub struct TransformDef {
 macro_rules! object_defs {
     ($( $(#[$doc:meta])* $variant:ident ($name:ident) { $( $(#[$fdoc:meta])* $field:ident : $ty:ty $(= $default:literal)? ),* $(,)? } )*) => {
         /// `[[objects]]`: a shape with a material and an optional transform.
-        #[derive(Debug, Deserialize)]
+        #[derive(Debug, Deserialize, JsonSchema)]
         #[serde(tag = "type", rename_all = "lowercase")]
         pub enum ObjectDef {
             $( $(#[$doc])* $variant($name), )*
         }
 
         $(
-            #[derive(Debug, Deserialize)]
+            #[derive(Debug, Deserialize, JsonSchema)]
             #[serde(deny_unknown_fields)]
             $(#[$doc])*
             pub struct $name {
@@ -490,7 +511,7 @@ object_defs! {
 }
 
 /// A colour: `[r, g, b]` in linear RGB, or one number for grey.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct ColorDef(pub [f32; 3]);
 
 impl<'de> Deserialize<'de> for ColorDef {
@@ -519,7 +540,7 @@ impl<'de> Deserialize<'de> for ColorDef {
 }
 
 /// A scale: one number for all axes or `[x, y, z]`.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct ScaleDef(pub [f32; 3]);
 
 impl<'de> Deserialize<'de> for ScaleDef {
@@ -533,6 +554,53 @@ impl<'de> Deserialize<'de> for ScaleDef {
                 ))
             })
     }
+}
+
+/// The schema of [`ColorDef`] and [`ScaleDef`]: one number, or an array of exactly three.
+fn number_or_three(description: &str) -> Schema {
+    json_schema!({
+        "description": description,
+        "type": ["number", "array"],
+        "items": { "type": "number" },
+        "minItems": 3,
+        "maxItems": 3,
+    })
+}
+
+impl JsonSchema for ColorDef {
+    fn schema_name() -> Cow<'static, str> {
+        "Color".into()
+    }
+    fn json_schema(_: &mut SchemaGenerator) -> Schema {
+        number_or_three("A colour: [r, g, b] in linear RGB, or one number for grey.")
+    }
+}
+
+impl JsonSchema for ScaleDef {
+    fn schema_name() -> Cow<'static, str> {
+        "Scale".into()
+    }
+    fn json_schema(_: &mut SchemaGenerator) -> Schema {
+        number_or_three("A scale: one number for all axes, or [x, y, z].")
+    }
+}
+
+/// The JSON Schema of a scene file, generated from these types: what `snell schema` prints,
+/// for editors to complete keys and flag mistakes as one types. Draft 7, which editors (VS
+/// Code's JSON support, taplo) understand fully.
+pub fn schema() -> serde_json::Value {
+    let mut schema = schemars::generate::SchemaSettings::draft07()
+        .into_generator()
+        .into_root_schema_for::<SceneFile>();
+    schema.insert(
+        "$comment".into(),
+        format!(
+            "Generated by `snell schema` (snell {}) from the types its parser reads.",
+            env!("CARGO_PKG_VERSION")
+        )
+        .into(),
+    );
+    schema.to_value()
 }
 
 fn three<'de, A: SeqAccess<'de>>(mut seq: A, exp: &dyn de::Expected) -> Result<[f32; 3], A::Error> {

@@ -8,6 +8,7 @@ mod meshes;
 
 pub use build::{load, load_str};
 pub use diag::{DocPath, Format, Problem, SceneDiagnostic, SceneError, Seg, did_you_mean};
+pub use format::schema;
 
 use crate::accel::Bvh;
 use crate::camera::Camera;

@@ -253,3 +253,14 @@ fn check_prints_a_summary_and_warnings() {
         "{out}"
     );
 }
+
+#[test]
+fn schema_prints_the_scene_format_as_json() {
+    let dir = scratch("schema");
+    let o = expect(&["schema"], &dir, 0);
+    let printed: serde_json::Value =
+        serde_json::from_str(&stdout(&o)).expect("`snell schema` prints JSON");
+    assert_eq!(printed, snell::scene::schema());
+    assert_eq!(printed["title"], "snell scene");
+    assert!(stderr(&o).is_empty(), "{}", stderr(&o));
+}

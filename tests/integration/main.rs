@@ -1,5 +1,5 @@
 //! Integration tests, built as one test binary: the command line, whole renders (golden
-//! images, determinism) and optics through a built scene.
+//! images, determinism), optics through a built scene, and the scene's JSON Schema.
 
 mod aov;
 mod bad;
@@ -9,6 +9,7 @@ mod meshes;
 mod optics;
 mod renders;
 mod robustness;
+mod schema;
 mod shading;
 
 use std::path::{Path, PathBuf};
