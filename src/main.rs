@@ -9,7 +9,7 @@ use snell::integrator::aov::{Aov, render_aovs};
 use snell::integrator::explain::TreeRecorder;
 use snell::output::{ExrLayer, OutputError, OutputFormat, PendingOutput, encode_exr_layers};
 use snell::render::{RenderOptions, TileStore};
-use snell::scene::{RenderSettings, SceneError};
+use snell::scene::{Limits, RenderSettings, SceneError};
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -70,6 +70,8 @@ enum Command {
     Check {
         /// The scene file (.toml or .json).
         scene: PathBuf,
+        #[command(flatten)]
+        limits: LimitArgs,
     },
     /// Explain one pixel: print the tree of rays behind one of its samples, with what each
     /// ray hit, the material's terms, every light and its shadow ray, the Fresnel split and
@@ -129,6 +131,8 @@ struct RenderArgs {
     /// Seconds between checkpoints.
     #[arg(long, value_name = "SECS", default_value_t = 30.0)]
     checkpoint_every: f64,
+    #[command(flatten)]
+    limits: LimitArgs,
 }
 
 /// Exit code of a render stopped by Ctrl-C or SIGTERM (after writing what was done).
@@ -198,6 +202,44 @@ struct ExplainArgs {
     /// Most rays shown; the rest of a bigger tree is counted, and the cut is said.
     #[arg(long, value_name = "N", default_value_t = 200)]
     max_rays: usize,
+    #[command(flatten)]
+    limits: LimitArgs,
+}
+
+/// Raising the limits a scene and a render are checked against.
+#[derive(Args, Debug)]
+struct LimitArgs {
+    /// Most pixels in the image [default: 268435456, 16384 x 16384].
+    #[arg(long, value_name = "N")]
+    max_pixels: Option<u64>,
+    /// Most samples per pixel [default: 65536].
+    #[arg(long, value_name = "N")]
+    max_spp: Option<u32>,
+    /// Longest ray chain a scene may ask for with max_depth [default: 64; at most 256].
+    #[arg(long, value_name = "N")]
+    max_depth: Option<u32>,
+    /// Most texels in one image texture [default: 268435456].
+    #[arg(long, value_name = "N")]
+    max_texture_pixels: Option<u64>,
+    /// Most triangles in all the scene's meshes [default: 268435456].
+    #[arg(long, value_name = "N")]
+    max_triangles: Option<u64>,
+}
+
+impl LimitArgs {
+    /// The limits, or a usage error when one is raised past what snell can do.
+    fn get(&self) -> Result<Limits, ExitCode> {
+        let d = Limits::default();
+        let l = Limits {
+            max_pixels: self.max_pixels.unwrap_or(d.max_pixels),
+            max_spp: self.max_spp.unwrap_or(d.max_spp),
+            max_depth: self.max_depth.unwrap_or(d.max_depth),
+            max_texture_pixels: self.max_texture_pixels.unwrap_or(d.max_texture_pixels),
+            max_triangles: self.max_triangles.unwrap_or(d.max_triangles),
+        };
+        l.check().map_err(|e| usage_error(&e, None))?;
+        Ok(l)
+    }
 }
 
 fn parse_pixel(s: &str) -> Result<(u32, u32), String> {
@@ -216,7 +258,10 @@ fn main() -> ExitCode {
     let cli = Cli::parse();
     match cli.command {
         Command::Render(args) => render(args),
-        Command::Check { scene } => check(&scene),
+        Command::Check { scene, limits } => match limits.get() {
+            Ok(l) => check(&scene, &l),
+            Err(code) => code,
+        },
         Command::Explain(args) => explain(args),
         Command::Schema => schema(),
     }
@@ -255,15 +300,15 @@ fn print_scene_error(e: &SceneError) {
     );
 }
 
-fn load(path: &Path) -> Result<snell::Scene, ExitCode> {
-    snell::scene::load(path).map_err(|e| {
+fn load(path: &Path, limits: &Limits) -> Result<snell::Scene, ExitCode> {
+    snell::scene::load_with(path, limits).map_err(|e| {
         print_scene_error(&e);
         ExitCode::from(2)
     })
 }
 
-fn check(path: &Path) -> ExitCode {
-    let scene = match load(path) {
+fn check(path: &Path, limits: &Limits) -> ExitCode {
+    let scene = match load(path, limits) {
         Ok(s) => s,
         Err(code) => return code,
     };
@@ -276,7 +321,11 @@ fn check(path: &Path) -> ExitCode {
 }
 
 fn explain(args: ExplainArgs) -> ExitCode {
-    let mut scene = match load(&args.scene) {
+    let limits = match args.limits.get() {
+        Ok(l) => l,
+        Err(code) => return code,
+    };
+    let mut scene = match load(&args.scene, &limits) {
         Ok(s) => s,
         Err(code) => return code,
     };
@@ -289,7 +338,7 @@ fn explain(args: ExplainArgs) -> ExitCode {
             return usage_error(&e, None);
         }
     }
-    if let Err((e, help)) = RenderSettings::check_spp(s.spp) {
+    if let Err((e, help)) = limits.check_spp(s.spp) {
         return usage_error(&e, help.as_deref());
     }
     let (x, y) = args.pixel;
@@ -401,8 +450,12 @@ fn render(args: RenderArgs) -> ExitCode {
         (None, Some(c)) => c.scene.clone(),
         (None, None) => return usage_error("give a scene file", None),
     };
+    let limits = match args.limits.get() {
+        Ok(l) => l,
+        Err(code) => return code,
+    };
     let load_start = Instant::now();
-    let mut scene = match load(&scene_path) {
+    let mut scene = match load(&scene_path, &limits) {
         Ok(s) => s,
         Err(code) => return code,
     };
@@ -431,11 +484,18 @@ fn render(args: RenderArgs) -> ExitCode {
             return usage_error(&e, None);
         }
     }
-    if let Err(e) = RenderSettings::check_pixels(s.width, s.height) {
-        return usage_error(&e, None);
-    }
-    if let Err((e, help)) = RenderSettings::check_spp(s.spp) {
+    if let Err((e, help)) = limits.check_pixels(s.width, s.height) {
         return usage_error(&e, help.as_deref());
+    }
+    if let Err((e, help)) = limits.check_spp(s.spp) {
+        return usage_error(&e, help.as_deref());
+    }
+    // Refuse a render the machine cannot hold before spending time on it.
+    let estimate = snell::scene::memory_estimate(&scene);
+    if let Some(available) = snell::scene::available_memory()
+        && let Err(e) = estimate.check(available)
+    {
+        return usage_error(&e, Some("render a smaller image (--width, --height)"));
     }
     let scene_bytes = std::fs::read(&scene_path).unwrap_or_default();
     let fingerprint = snell::checkpoint::fingerprint(

@@ -4,7 +4,7 @@
 use super::diag::{DocPath, Format, Problem, SceneError, did_you_mean, offset_of};
 use super::format::*;
 use super::meshes::{LoadedMesh, MeshCache, Palette};
-use super::{BuildStats, Fog, Object, RenderSettings, Scene};
+use super::{BuildStats, Fog, Limits, Object, RenderSettings, Scene};
 use crate::accel::Bvh;
 use crate::camera::Camera;
 use crate::film::Filter;
@@ -20,6 +20,12 @@ use std::sync::Arc;
 /// Reads, checks and builds the scene in `path` (`.toml` or `.json`). Relative paths in it
 /// resolve against its folder.
 pub fn load(path: &Path) -> Result<Scene, SceneError> {
+    load_with(path, &Limits::default())
+}
+
+/// As [`load`], checking the scene against `limits` (image size, samples, depth, texture
+/// sizes, triangles) instead of the defaults.
+pub fn load_with(path: &Path, limits: &Limits) -> Result<Scene, SceneError> {
     let format = match path.extension().and_then(|e| e.to_str()) {
         Some(e) if e.eq_ignore_ascii_case("json") => Format::Json,
         Some(e) if e.eq_ignore_ascii_case("toml") => Format::Toml,
@@ -42,7 +48,7 @@ pub fn load(path: &Path) -> Result<Scene, SceneError> {
         )
     })?;
     let base = path.parent().unwrap_or(Path::new("."));
-    load_str(&text, path, base, format)
+    build(&text, path, base, format, limits)
 }
 
 /// Builds a scene from text. `file` names it in messages; `base_dir` resolves relative paths.
@@ -52,6 +58,16 @@ pub fn load_str(
     base_dir: &Path,
     format: Format,
 ) -> Result<Scene, SceneError> {
+    build(text, file, base_dir, format, &Limits::default())
+}
+
+fn build(
+    text: &str,
+    file: &Path,
+    base_dir: &Path,
+    format: Format,
+    limits: &Limits,
+) -> Result<Scene, SceneError> {
     let def = parse(text, format).map_err(|p| SceneError::located(file, text, format, vec![p]))?;
     let mut b = Builder {
         problems: vec![],
@@ -59,6 +75,8 @@ pub fn load_str(
         base_dir,
         mesh_cache: Default::default(),
         stats: Default::default(),
+        limits: *limits,
+        triangles_loaded: 0,
     };
     let scene = b.scene(def);
     if b.problems.is_empty() {
@@ -317,6 +335,9 @@ pub(super) struct Builder<'a> {
     /// Meshes loaded so far, by file and normals option (`None` where loading failed).
     pub(super) mesh_cache: MeshCache,
     pub(super) stats: BuildStats,
+    pub(super) limits: Limits,
+    /// Triangles in the meshes loaded so far (each file once).
+    pub(super) triangles_loaded: u64,
 }
 
 impl Builder<'_> {
@@ -637,6 +658,7 @@ impl Builder<'_> {
             transparent_objects,
             needs_uv,
             stats: std::mem::take(&mut self.stats),
+            limits: self.limits,
         }
     }
 
@@ -647,24 +669,18 @@ impl Builder<'_> {
         if let Err(e) = RenderSettings::check_side("height", d.height) {
             self.error(path.key("height"), e);
         }
-        if let Err(e) = RenderSettings::check_pixels(d.width, d.height) {
-            self.error(path.key("width"), e);
-        }
-        if let Err((e, help)) = RenderSettings::check_spp(d.samples) {
-            self.problems.push(Problem {
-                help,
-                ..Problem::new(path.key("samples"), e)
-            });
-        }
-        if d.max_depth == 0 || d.max_depth > RenderSettings::MAX_DEPTH {
-            self.error(
-                path.key("max_depth"),
-                format!(
-                    "must be between 1 (camera rays only) and {}, not {}",
-                    RenderSettings::MAX_DEPTH,
-                    d.max_depth
-                ),
-            );
+        let limits = self.limits;
+        for (key, check) in [
+            ("width", limits.check_pixels(d.width, d.height)),
+            ("samples", limits.check_spp(d.samples)),
+            ("max_depth", limits.check_depth(d.max_depth)),
+        ] {
+            if let Err((e, help)) = check {
+                self.problems.push(Problem {
+                    help,
+                    ..Problem::new(path.key(key), e)
+                });
+            }
         }
         let fpath = path.key("filter");
         let radius = d.filter.radius.map(|r| {
@@ -836,7 +852,11 @@ impl Builder<'_> {
                     ColorSpaceDef::Srgb => ColorSpace::Srgb,
                     ColorSpaceDef::Linear => ColorSpace::Linear,
                 };
-                let pattern = match ImageData::load(&full, space) {
+                let pattern = match ImageData::load_limited(
+                    &full,
+                    space,
+                    self.limits.max_texture_pixels,
+                ) {
                     Ok(img) => Pattern::Image(Arc::new(img)),
                     Err(e) => {
                         self.error_help(

@@ -225,6 +225,18 @@ impl Builder<'_> {
             ));
         }
         self.stats.mesh_bvh_time += mesh.build_time;
+        self.triangles_loaded += mesh.triangle_count() as u64;
+        if self.triangles_loaded > self.limits.max_triangles {
+            self.error_help(
+                path.clone(),
+                format!(
+                    "with {file} the scene's meshes hold {} triangles, more than the {} allowed",
+                    self.triangles_loaded, self.limits.max_triangles
+                ),
+                "raise the limit with --max-triangles",
+            );
+            return None;
+        }
         let stem = Path::new(file)
             .file_name()
             .map_or(file.into(), |n| n.to_string_lossy());
@@ -258,7 +270,11 @@ impl Builder<'_> {
         }
         let kd = m.kd.map_or(Color::splat(0.8), rgb);
         let pattern = match &m.map_kd {
-            Some(file) => match ImageData::load(file, ColorSpace::Srgb) {
+            Some(file) => match ImageData::load_limited(
+                file,
+                ColorSpace::Srgb,
+                self.limits.max_texture_pixels,
+            ) {
                 Ok(img) => Pattern::Image(Arc::new(img)),
                 Err(e) => {
                     self.error_help(

@@ -29,6 +29,20 @@ pub enum ImageLoadError {
         /// The cause.
         source: std::io::Error,
     },
+    /// The image has more texels than allowed.
+    #[error(
+        "{path} is {width} x {height}, more than the {max_pixels} texels an image texture may have (raise the limit with --max-texture-pixels)"
+    )]
+    TooLarge {
+        /// The file.
+        path: String,
+        /// Its width.
+        width: u32,
+        /// Its height.
+        height: u32,
+        /// The limit.
+        max_pixels: u64,
+    },
     /// The file could be read but not decoded.
     #[error("cannot decode image {path}: {source}")]
     Decode {
@@ -42,15 +56,47 @@ pub enum ImageLoadError {
 impl ImageData {
     /// Loads a PNG, JPEG, BMP or OpenEXR file (the format is read from its content).
     pub fn load(path: &Path, space: ColorSpace) -> Result<Self, ImageLoadError> {
+        Self::load_limited(path, space, 1 << 28)
+    }
+
+    /// As [`ImageData::load`], refusing images of more than `max_pixels` texels before
+    /// decoding them (the header says the size), so a huge or corrupt file cannot exhaust
+    /// memory.
+    pub fn load_limited(
+        path: &Path,
+        space: ColorSpace,
+        max_pixels: u64,
+    ) -> Result<Self, ImageLoadError> {
         let shown = path.display().to_string();
         let bytes = std::fs::read(path).map_err(|source| ImageLoadError::Io {
             path: shown.clone(),
             source,
         })?;
-        let img = ::image::load_from_memory(&bytes).map_err(|source| ImageLoadError::Decode {
-            path: shown,
+        let decode = |source| ImageLoadError::Decode {
+            path: shown.clone(),
             source,
-        })?;
+        };
+        let reader = ::image::ImageReader::new(std::io::Cursor::new(&bytes))
+            .with_guessed_format()
+            .map_err(|e| decode(::image::ImageError::IoError(e)))?;
+        let (w, h) = reader.into_dimensions().map_err(decode)?;
+        if w as u64 * h as u64 > max_pixels {
+            return Err(ImageLoadError::TooLarge {
+                path: shown.clone(),
+                width: w,
+                height: h,
+                max_pixels,
+            });
+        }
+        let mut reader = ::image::ImageReader::new(std::io::Cursor::new(&bytes))
+            .with_guessed_format()
+            .map_err(|e| decode(::image::ImageError::IoError(e)))?;
+        // Decoders allocate by the header, so the header's size is all the limit needs; let
+        // them take what that size requires (the image crate's own default is 512 MiB).
+        let mut limits = ::image::Limits::default();
+        limits.max_alloc = Some(max_pixels.saturating_mul(16).max(1 << 29));
+        reader.limits(limits);
+        let img = reader.decode().map_err(decode)?;
         Ok(Self::from_dynamic(&img, space))
     }
 

@@ -59,6 +59,15 @@ impl Texture {
 
     /// The linear colour at a surface point.
     #[inline]
+    /// Bytes of decoded image data it holds (0 for procedural textures).
+    pub fn bytes(&self) -> usize {
+        match &self.pattern {
+            Pattern::Image(img) => img.width() as usize * img.height() as usize * 12,
+            _ => 0,
+        }
+    }
+
+    /// The colour at a point.
     pub fn eval(&self, p: &TexturePoint) -> Color {
         match &self.pattern {
             Pattern::Solid(c) => *c,

@@ -78,10 +78,54 @@ fn bad_command_lines_exit_2() {
         2,
     );
     assert!(
-        stderr(&o).contains("more than the 268435456 (16384 x 16384)"),
+        stderr(&o).contains("more than the 268435456 a render may have")
+            && stderr(&o).contains("raise the limit with --max-pixels"),
         "{}",
         stderr(&o)
     );
+    // Raised past what the machine holds: refused before rendering, with the estimate
+    // (65536 x 65536 pixels need 112 GiB; skipped on a machine with more than that free).
+    if snell::scene::available_memory().is_some_and(|a| a < 112 << 30) {
+        let o = expect(
+            &[
+                "render",
+                &scene,
+                "--width",
+                "65536",
+                "--height",
+                "65536",
+                "--max-pixels",
+                "4294967296",
+            ],
+            &dir,
+            2,
+        );
+        assert!(
+            stderr(&o).contains("this render would need about 112.0 GiB (image 112.0 GiB"),
+            "{}",
+            stderr(&o)
+        );
+    }
+    // Texture and triangle limits, each with the flag that raises it.
+    let seed = repo("scenes/seed.toml").to_string_lossy().into_owned();
+    let o = expect(&["check", &seed, "--max-texture-pixels", "1000"], &dir, 2);
+    assert!(
+        stderr(&o).contains("2048 x 1024, more than the 1000 texels")
+            && stderr(&o).contains("--max-texture-pixels"),
+        "{}",
+        stderr(&o)
+    );
+    let bunny = repo("scenes/bunny.toml").to_string_lossy().into_owned();
+    let o = expect(&["check", &bunny, "--max-triangles", "1000"], &dir, 2);
+    assert!(
+        stderr(&o).contains("69451 triangles, more than the 1000 allowed")
+            && stderr(&o).contains("--max-triangles"),
+        "{}",
+        stderr(&o)
+    );
+    // A limit cannot be raised past what snell can do.
+    let o = expect(&["check", &scene, "--max-depth", "1000"], &dir, 2);
+    assert!(stderr(&o).contains("--max-depth must be between 1 and 256"));
     let o = expect(&["render", &scene, "--width", "0"], &dir, 2);
     assert!(
         stderr(&o).contains("--width must be between 1 and"),
