@@ -7,6 +7,7 @@ mod cli;
 mod explain;
 mod meshes;
 mod optics;
+mod properties;
 mod renders;
 mod robustness;
 mod schema;
