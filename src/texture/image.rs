@@ -117,20 +117,25 @@ impl ImageData {
     /// Bilinear lookup at texture coordinates (texel centres at `(i + 0.5) / size`),
     /// repeating horizontally, and vertically unless `clamp_v`.
     pub fn sample_bilinear(&self, uv: Vec2, clamp_v: bool) -> Color {
-        if !uv.is_finite() {
-            return Color::ZERO;
-        }
         let x = uv.x * self.width as f32 - 0.5;
         let y = uv.y * self.height as f32 - 0.5;
+        // Checked after scaling: a finite uv near f32::MAX becomes infinite here, and the
+        // fractions below would be NaN.
+        if !(x.is_finite() && y.is_finite()) {
+            return Color::ZERO;
+        }
         let (x0, y0) = (x.floor(), y.floor());
         let (fx, fy) = (x - x0, y - y0);
         let (x0, y0) = (x0 as i64, y0 as i64);
+        // A far-away uv (a planar mapping on a distant hit) saturates the cast to i64::MAX;
+        // its neighbour must not overflow. At that distance f32 has no fraction left anyway.
+        let (x1, y1) = (x0.saturating_add(1), y0.saturating_add(1));
         let top = self
             .texel(x0, y0, clamp_v)
-            .lerp(self.texel(x0 + 1, y0, clamp_v), fx);
+            .lerp(self.texel(x1, y0, clamp_v), fx);
         let bottom = self
-            .texel(x0, y0 + 1, clamp_v)
-            .lerp(self.texel(x0 + 1, y0 + 1, clamp_v), fx);
+            .texel(x0, y1, clamp_v)
+            .lerp(self.texel(x1, y1, clamp_v), fx);
         top.lerp(bottom, fy)
     }
 }
@@ -202,5 +207,24 @@ mod tests {
         assert!((edge.x - 0.5).abs() < 1e-6);
         let wrapped = img.sample_bilinear(Vec2::new(1.25, 0.5), false);
         assert!(wrapped.x.abs() < 1e-6);
+    }
+
+    #[test]
+    fn far_away_uvs_sample_without_overflow() {
+        // Found by the `image` fuzz target: uv 1e30 saturated x0 to i64::MAX and x0 + 1
+        // overflowed (a panic in debug builds).
+        let img = two_by_one(ColorSpace::Linear);
+        for uv in [
+            Vec2::new(1e30, 0.5),
+            Vec2::new(0.5, 1e30),
+            Vec2::new(-1e30, -1e30),
+            Vec2::new(f32::MAX, f32::MAX),
+            Vec2::new(f32::MIN, f32::MAX),
+        ] {
+            for clamp_v in [false, true] {
+                let c = img.sample_bilinear(uv, clamp_v);
+                assert!(c.is_finite() && c.min_element() >= 0.0, "{uv}: {c}");
+            }
+        }
     }
 }
