@@ -1,4 +1,5 @@
 use crate::math::{Color, Vec2};
+use std::cell::Cell;
 use std::path::Path;
 
 /// How the numbers in an image file relate to light.
@@ -47,9 +48,11 @@ impl ImageData {
             path: shown.clone(),
             source,
         })?;
-        let img = ::image::load_from_memory(&bytes).map_err(|source| ImageLoadError::Decode {
-            path: shown,
-            source,
+        let img = decode(&bytes, ::image::Limits::default()).map_err(|source| {
+            ImageLoadError::Decode {
+                path: shown,
+                source,
+            }
         })?;
         Ok(Self::from_dynamic(&img, space))
     }
@@ -140,6 +143,42 @@ impl ImageData {
     }
 }
 
+thread_local! {
+    static IN_DECODER: Cell<bool> = const { Cell::new(false) };
+}
+
+/// Decodes an image file held in memory (PNG, JPEG, BMP or OpenEXR, told apart by its
+/// content) within `limits` (`Limits::default()` is what `image::load_from_memory` uses).
+///
+/// A decoder that panics on a corrupt file gives an error, not a crash: zune-jpeg, the
+/// image crate's JPEG decoder, asserts in its upsampler on some crafted files (found by the
+/// `image` fuzz target). While it runs, [`in_guarded_decoder`] is true on this thread, so a
+/// panic hook can keep quiet about a panic that is about to become this error.
+pub fn decode(
+    bytes: &[u8],
+    limits: ::image::Limits,
+) -> Result<::image::DynamicImage, ::image::ImageError> {
+    let format = ::image::guess_format(bytes)?;
+    let mut reader = ::image::ImageReader::with_format(std::io::Cursor::new(bytes), format);
+    reader.limits(limits);
+    let was = IN_DECODER.replace(true);
+    let result = std::panic::catch_unwind(move || reader.decode());
+    IN_DECODER.set(was);
+    result.unwrap_or_else(|_| {
+        Err(::image::ImageError::Decoding(
+            ::image::error::DecodingError::new(
+                ::image::error::ImageFormatHint::Exact(format),
+                "the decoder failed on this file (it is corrupt)",
+            ),
+        ))
+    })
+}
+
+/// Whether this thread is inside [`decode`], where a panic is caught and becomes an error.
+pub fn in_guarded_decoder() -> bool {
+    IN_DECODER.get()
+}
+
 /// The sRGB transfer function, inverted: encoded value to linear light.
 pub fn srgb_to_linear(x: f32) -> f32 {
     if x <= 0.04045 {
@@ -207,6 +246,18 @@ mod tests {
         assert!((edge.x - 0.5).abs() < 1e-6);
         let wrapped = img.sample_bilinear(Vec2::new(1.25, 0.5), false);
         assert!(wrapped.x.abs() < 1e-6);
+    }
+
+    #[test]
+    fn a_jpeg_that_panics_the_decoder_is_an_error() {
+        // Found by the `image` fuzz target: zune-jpeg's AVX2 upsampler asserts on this file
+        // (on machines without AVX2 its scalar twin may decode or refuse it).
+        let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/bad/jpeg-decoder-panic.jpg");
+        match ImageData::load(&path, ColorSpace::Srgb) {
+            Err(e) => assert!(e.to_string().contains("cannot decode image"), "{e}"),
+            Ok(img) => assert!(img.width() > 0),
+        }
+        assert!(!in_guarded_decoder());
     }
 
     #[test]

@@ -5,7 +5,7 @@
 mod image;
 mod mapping;
 
-pub use image::{ColorSpace, ImageData, srgb_to_linear};
+pub use image::{ColorSpace, ImageData, decode, in_guarded_decoder, srgb_to_linear};
 pub use mapping::{Mapping, TexturePoint};
 
 use crate::math::{Color, Vec2};
