@@ -255,6 +255,14 @@ fn parse_pixel(s: &str) -> Result<(u32, u32), String> {
 }
 
 fn main() -> ExitCode {
+    // A decoder panic on a corrupt texture is caught and reported as a scene error; the
+    // default hook would print it as if snell had crashed.
+    let default_hook = std::panic::take_hook();
+    std::panic::set_hook(Box::new(move |info| {
+        if !snell::texture::in_guarded_decoder() {
+            default_hook(info)
+        }
+    }));
     let cli = Cli::parse();
     match cli.command {
         Command::Render(args) => render(args),

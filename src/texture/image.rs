@@ -1,4 +1,5 @@
 use crate::math::{Color, Vec2};
+use std::cell::Cell;
 use std::path::Path;
 
 /// How the numbers in an image file relate to light.
@@ -72,14 +73,19 @@ impl ImageData {
             path: shown.clone(),
             source,
         })?;
-        let decode = |source| ImageLoadError::Decode {
+        let decode_error = |source| ImageLoadError::Decode {
             path: shown.clone(),
             source,
         };
-        let reader = ::image::ImageReader::new(std::io::Cursor::new(&bytes))
-            .with_guessed_format()
-            .map_err(|e| decode(::image::ImageError::IoError(e)))?;
-        let (w, h) = reader.into_dimensions().map_err(decode)?;
+        // The size from the header first (a header, too, can be crafted to upset a decoder),
+        // then the pixels, each within the decoder guard.
+        let (w, h) = guarded(|| {
+            ::image::ImageReader::new(std::io::Cursor::new(&bytes))
+                .with_guessed_format()
+                .map_err(::image::ImageError::IoError)?
+                .into_dimensions()
+        })
+        .map_err(decode_error)?;
         if w as u64 * h as u64 > max_pixels {
             return Err(ImageLoadError::TooLarge {
                 path: shown.clone(),
@@ -88,15 +94,11 @@ impl ImageData {
                 max_pixels,
             });
         }
-        let mut reader = ::image::ImageReader::new(std::io::Cursor::new(&bytes))
-            .with_guessed_format()
-            .map_err(|e| decode(::image::ImageError::IoError(e)))?;
         // Decoders allocate by the header, so the header's size is all the limit needs; let
         // them take what that size requires (the image crate's own default is 512 MiB).
         let mut limits = ::image::Limits::default();
         limits.max_alloc = Some(max_pixels.saturating_mul(16).max(1 << 29));
-        reader.limits(limits);
-        let img = reader.decode().map_err(decode)?;
+        let img = decode(&bytes, limits).map_err(decode_error)?;
         Ok(Self::from_dynamic(&img, space))
     }
 
@@ -163,22 +165,72 @@ impl ImageData {
     /// Bilinear lookup at texture coordinates (texel centres at `(i + 0.5) / size`),
     /// repeating horizontally, and vertically unless `clamp_v`.
     pub fn sample_bilinear(&self, uv: Vec2, clamp_v: bool) -> Color {
-        if !uv.is_finite() {
-            return Color::ZERO;
-        }
         let x = uv.x * self.width as f32 - 0.5;
         let y = uv.y * self.height as f32 - 0.5;
+        // Checked after scaling: a finite uv near f32::MAX becomes infinite here, and the
+        // fractions below would be NaN.
+        if !(x.is_finite() && y.is_finite()) {
+            return Color::ZERO;
+        }
         let (x0, y0) = (x.floor(), y.floor());
         let (fx, fy) = (x - x0, y - y0);
         let (x0, y0) = (x0 as i64, y0 as i64);
+        // A far-away uv (a planar mapping on a distant hit) saturates the cast to i64::MAX;
+        // its neighbour must not overflow. At that distance f32 has no fraction left anyway.
+        let (x1, y1) = (x0.saturating_add(1), y0.saturating_add(1));
         let top = self
             .texel(x0, y0, clamp_v)
-            .lerp(self.texel(x0 + 1, y0, clamp_v), fx);
+            .lerp(self.texel(x1, y0, clamp_v), fx);
         let bottom = self
-            .texel(x0, y0 + 1, clamp_v)
-            .lerp(self.texel(x0 + 1, y0 + 1, clamp_v), fx);
+            .texel(x0, y1, clamp_v)
+            .lerp(self.texel(x1, y1, clamp_v), fx);
         top.lerp(bottom, fy)
     }
+}
+
+thread_local! {
+    static IN_DECODER: Cell<bool> = const { Cell::new(false) };
+}
+
+/// Decodes an image file held in memory (PNG, JPEG, BMP or OpenEXR, told apart by its
+/// content) within `limits` (`Limits::default()` is what `image::load_from_memory` uses).
+///
+/// A decoder that panics on a corrupt file gives an error, not a crash: zune-jpeg, the
+/// image crate's JPEG decoder, asserts in its upsampler on some crafted files (found by the
+/// `image` fuzz target). While it runs, [`in_guarded_decoder`] is true on this thread, so a
+/// panic hook can keep quiet about a panic that is about to become this error.
+pub fn decode(
+    bytes: &[u8],
+    limits: ::image::Limits,
+) -> Result<::image::DynamicImage, ::image::ImageError> {
+    let format = ::image::guess_format(bytes)?;
+    guarded(move || {
+        let mut reader = ::image::ImageReader::with_format(std::io::Cursor::new(bytes), format);
+        reader.limits(limits);
+        reader.decode()
+    })
+}
+
+/// Runs a decoder call with panics turned into a decoding error (see [`decode`]).
+fn guarded<T>(
+    f: impl FnOnce() -> Result<T, ::image::ImageError> + std::panic::UnwindSafe,
+) -> Result<T, ::image::ImageError> {
+    let was = IN_DECODER.replace(true);
+    let result = std::panic::catch_unwind(f);
+    IN_DECODER.set(was);
+    result.unwrap_or_else(|_| {
+        Err(::image::ImageError::Decoding(
+            ::image::error::DecodingError::new(
+                ::image::error::ImageFormatHint::Unknown,
+                "the decoder failed on this file (it is corrupt)",
+            ),
+        ))
+    })
+}
+
+/// Whether this thread is inside [`decode`], where a panic is caught and becomes an error.
+pub fn in_guarded_decoder() -> bool {
+    IN_DECODER.get()
 }
 
 /// The sRGB transfer function, inverted: encoded value to linear light.
@@ -248,5 +300,36 @@ mod tests {
         assert!((edge.x - 0.5).abs() < 1e-6);
         let wrapped = img.sample_bilinear(Vec2::new(1.25, 0.5), false);
         assert!(wrapped.x.abs() < 1e-6);
+    }
+
+    #[test]
+    fn a_jpeg_that_panics_the_decoder_is_an_error() {
+        // Found by the `image` fuzz target: zune-jpeg's AVX2 upsampler asserts on this file
+        // (on machines without AVX2 its scalar twin may decode or refuse it).
+        let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/bad/jpeg-decoder-panic.jpg");
+        match ImageData::load(&path, ColorSpace::Srgb) {
+            Err(e) => assert!(e.to_string().contains("cannot decode image"), "{e}"),
+            Ok(img) => assert!(img.width() > 0),
+        }
+        assert!(!in_guarded_decoder());
+    }
+
+    #[test]
+    fn far_away_uvs_sample_without_overflow() {
+        // Found by the `image` fuzz target: uv 1e30 saturated x0 to i64::MAX and x0 + 1
+        // overflowed (a panic in debug builds).
+        let img = two_by_one(ColorSpace::Linear);
+        for uv in [
+            Vec2::new(1e30, 0.5),
+            Vec2::new(0.5, 1e30),
+            Vec2::new(-1e30, -1e30),
+            Vec2::new(f32::MAX, f32::MAX),
+            Vec2::new(f32::MIN, f32::MAX),
+        ] {
+            for clamp_v in [false, true] {
+                let c = img.sample_bilinear(uv, clamp_v);
+                assert!(c.is_finite() && c.min_element() >= 0.0, "{uv}: {c}");
+            }
+        }
     }
 }

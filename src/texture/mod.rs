@@ -5,7 +5,7 @@
 mod image;
 mod mapping;
 
-pub use image::{ColorSpace, ImageData, srgb_to_linear};
+pub use image::{ColorSpace, ImageData, decode, in_guarded_decoder, srgb_to_linear};
 pub use mapping::{Mapping, TexturePoint};
 
 use crate::math::{Color, Vec2};
@@ -99,7 +99,9 @@ impl Texture {
 /// (not truncation toward zero) keeps every cell the same size across 0, which was the
 /// seed report's checkerboard bug.
 pub fn checker_parity(uv: Vec2, size: f32) -> u32 {
-    let i = (uv.x / size).floor() as i64 + (uv.y / size).floor() as i64;
+    // Far-away uvs saturate the casts to i64::MAX; a wrapping sum keeps the parity (its low
+    // bit) exact where a plain `+` would overflow.
+    let i = ((uv.x / size).floor() as i64).wrapping_add((uv.y / size).floor() as i64);
     (i & 1) as u32
 }
 
@@ -137,6 +139,20 @@ mod tests {
             checker_parity(Vec2::new(-2.9, 0.5), size),
             checker_parity(Vec2::new(2.9, 0.5), size)
         );
+    }
+
+    #[test]
+    fn checker_parity_of_far_away_uvs_does_not_overflow() {
+        // The same saturating cast as the `image` fuzz target found in sample_bilinear: a
+        // planar mapping on a distant hit gives uvs past i64, and the sum overflowed.
+        for uv in [
+            Vec2::new(1e30, 1e30),
+            Vec2::new(f32::MAX, 2.0),
+            Vec2::new(-1e30, -1e30),
+            Vec2::new(f32::MIN, f32::MAX),
+        ] {
+            assert!(checker_parity(uv, 0.5) <= 1, "{uv}");
+        }
     }
 
     #[test]
