@@ -31,3 +31,21 @@ pub mod scene;
 pub mod texture;
 
 pub use scene::Scene;
+
+/// Reads a whole file that must be a regular file: a device such as `/dev/zero` or
+/// `/dev/random`, named by a scene, a `mtllib` line or a `map_Kd`, would otherwise be read
+/// forever. Folders and other special files get the same clear error.
+pub fn read_regular_file(path: &std::path::Path) -> std::io::Result<Vec<u8>> {
+    let meta = std::fs::metadata(path)?;
+    if !meta.is_file() {
+        return Err(std::io::Error::new(
+            std::io::ErrorKind::InvalidInput,
+            if meta.is_dir() {
+                "it is a folder, not a file"
+            } else {
+                "it is not a regular file (a device or pipe would be read forever)"
+            },
+        ));
+    }
+    std::fs::read(path)
+}

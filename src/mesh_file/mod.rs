@@ -127,7 +127,8 @@ pub fn load(path: &Path) -> Result<MeshData, MeshError> {
 
 /// Reads a whole file; mesh files are parsed from memory in one pass.
 pub(crate) fn read_file(path: &Path) -> Result<Vec<u8>, MeshError> {
-    std::fs::read(path).map_err(|e| MeshError::new(path, format!("cannot read file: {e}")))
+    crate::read_regular_file(path)
+        .map_err(|e| MeshError::new(path, format!("cannot read file: {e}")))
 }
 
 /// A capacity for `count` items that a lying header cannot turn into a huge allocation.

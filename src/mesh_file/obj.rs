@@ -528,7 +528,7 @@ impl<'p> Parser<'p> {
         if !self.loaded_mtl.insert(file.clone()) {
             return Ok(());
         }
-        let bytes = match std::fs::read(&file) {
+        let bytes = match crate::read_regular_file(&file) {
             Ok(bytes) => bytes,
             Err(e) => {
                 let why = if e.kind() == std::io::ErrorKind::NotFound {

@@ -36,7 +36,7 @@ pub fn load_with(path: &Path, limits: &Limits) -> Result<Scene, SceneError> {
             ));
         }
     };
-    let bytes = std::fs::read(path)
+    let bytes = crate::read_regular_file(path)
         .map_err(|e| SceneError::whole_file(path, format!("cannot read the scene file: {e}")))?;
     let text = String::from_utf8(bytes).map_err(|e| {
         SceneError::whole_file(

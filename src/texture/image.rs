@@ -69,7 +69,7 @@ impl ImageData {
         max_pixels: u64,
     ) -> Result<Self, ImageLoadError> {
         let shown = path.display().to_string();
-        let bytes = std::fs::read(path).map_err(|source| ImageLoadError::Io {
+        let bytes = crate::read_regular_file(path).map_err(|source| ImageLoadError::Io {
             path: shown.clone(),
             source,
         })?;

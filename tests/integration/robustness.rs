@@ -190,3 +190,27 @@ fn a_checkpoint_of_another_scene_or_size_is_refused() {
     assert_eq!(o.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&o.stderr).contains("is not a snell checkpoint"));
 }
+
+/// A file name can point at a device: /dev/zero would be read forever.
+#[cfg(unix)]
+#[test]
+fn devices_named_as_files_are_refused_not_read_forever() {
+    let dir = scratch("devices");
+    std::fs::write(
+        dir.join("m.obj"),
+        "mtllib /dev/zero\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n",
+    )
+    .unwrap();
+    let text = "[camera]\nlook_at = [0, 0, -1]\n[materials.m]\ncolor = 1\n\
+        [[lights]]\ntype = \"point\"\nposition = [0, 5, 0]\n\
+        [[objects]]\ntype = \"mesh\"\nfile = \"m.obj\"\nmaterial = \"m\"\n";
+    let scene = load_str(text, &dir.join("t.toml"), &dir, Format::Toml).unwrap();
+    assert!(
+        scene
+            .warnings
+            .iter()
+            .any(|w| w.contains("not a regular file")),
+        "{:?}",
+        scene.warnings
+    );
+}
