@@ -1,5 +1,9 @@
 //! A mesh file (PLY when it starts with `ply`, OBJ otherwise) taken the way a scene takes it:
 //! checked, arranged for ray queries (BVH build) and hit by rays from every side.
+//!
+//! Run it built with `-O` and `RUSTFLAGS=-Coverflow-checks=on` (docs/fuzzing.md): obvhs's
+//! debug assertions validate each BVH against limits of a traversal snell does not use, and
+//! snell's own builds switch them off.
 #![no_main]
 
 use glam::{Vec2, Vec3, Vec3A};

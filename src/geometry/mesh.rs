@@ -637,4 +637,38 @@ mod tests {
         assert!(n[0].z > 0.99 && n[0].x > 0.0, "{}", n[0]);
         assert!((n[3] - Vec3::X).length() < 1e-6);
     }
+
+    #[test]
+    fn coincident_triangles_are_all_found_through_a_deep_bvh() {
+        // Found by the `mesh` fuzz target: an OBJ whose polygons repeat the same corners
+        // gives hundreds of coincident triangles, and obvhs builds them into a chain so deep
+        // that its own debug validation (off in snell's builds) rejects it. The eight-wide
+        // BVH snell traverses must still find every hit, and the other triangle beside them.
+        let positions = vec![
+            Vec3::new(0.0, 0.0, 0.0),
+            Vec3::new(1.0, 0.0, 0.0),
+            Vec3::new(0.0, 1.0, 0.0),
+            Vec3::new(5.0, 0.0, 0.0),
+            Vec3::new(6.0, 0.0, 0.0),
+            Vec3::new(5.0, 1.0, 0.0),
+        ];
+        let mut triangles = vec![[0, 1, 2]; 2000];
+        triangles.push([3, 4, 5]);
+        let (m, dropped) = Mesh::new(MeshInput {
+            positions,
+            triangles,
+            ..MeshInput::default()
+        })
+        .unwrap();
+        assert_eq!((m.triangle_count(), dropped), (2001, 0));
+        for i in 0..50 {
+            let (x, y) = (0.05 + (i % 10) as f32 * 0.05, 0.05 + (i / 10) as f32 * 0.05);
+            for (ox, dz) in [(0.0, -1.0), (0.0, 1.0), (5.0, -1.0), (5.0, 1.0)] {
+                let ray = Ray::new(Vec3A::new(ox + x, y, -3.0 * dz), Vec3A::new(0.0, 0.0, dz));
+                let hit = m.intersect(&ray, f32::INFINITY);
+                assert!(hit.is_some_and(|h| (h.t - 3.0).abs() < 1e-5), "{ray:?}");
+                assert!(m.occluded(&ray, f32::INFINITY), "{ray:?}");
+            }
+        }
+    }
 }
