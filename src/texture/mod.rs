@@ -57,8 +57,6 @@ impl Texture {
         }
     }
 
-    /// The linear colour at a surface point.
-    #[inline]
     /// Bytes of decoded image data it holds (0 for procedural textures).
     pub fn bytes(&self) -> usize {
         match &self.pattern {
@@ -67,7 +65,8 @@ impl Texture {
         }
     }
 
-    /// The colour at a point.
+    /// The linear colour at a surface point.
+    #[inline]
     pub fn eval(&self, p: &TexturePoint) -> Color {
         match &self.pattern {
             Pattern::Solid(c) => *c,
