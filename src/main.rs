@@ -341,13 +341,8 @@ fn explain(args: ExplainArgs) -> ExitCode {
     s.width = args.width.unwrap_or(s.width);
     s.height = args.height.unwrap_or(s.height);
     s.spp = args.spp.unwrap_or(s.spp);
-    for (what, v) in [("--width", s.width), ("--height", s.height)] {
-        if let Err(e) = RenderSettings::check_side(what, v) {
-            return usage_error(&e, None);
-        }
-    }
-    if let Err((e, help)) = limits.check_spp(s.spp) {
-        return usage_error(&e, help.as_deref());
+    if let Err(code) = check_size_and_spp(s, &limits) {
+        return code;
     }
     let (x, y) = args.pixel;
     if x >= s.width || y >= s.height {
@@ -437,6 +432,16 @@ fn explain(args: ExplainArgs) -> ExitCode {
     ExitCode::SUCCESS
 }
 
+/// Checks the image sides and samples per pixel after the command line's overrides.
+fn check_size_and_spp(s: &RenderSettings, limits: &Limits) -> Result<(), ExitCode> {
+    for (what, v) in [("--width", s.width), ("--height", s.height)] {
+        RenderSettings::check_side(what, v).map_err(|e| usage_error(&e, None))?;
+    }
+    limits
+        .check_spp(s.spp)
+        .map_err(|(e, help)| usage_error(&e, help.as_deref()))
+}
+
 fn usage_error(msg: &str, help: Option<&str>) -> ExitCode {
     eprintln!("error: {msg}");
     if let Some(h) = help {
@@ -487,15 +492,10 @@ fn render(args: RenderArgs) -> ExitCode {
     if let Some(seed) = args.seed {
         s.seed = seed;
     }
-    for (what, v) in [("--width", s.width), ("--height", s.height)] {
-        if let Err(e) = RenderSettings::check_side(what, v) {
-            return usage_error(&e, None);
-        }
+    if let Err(code) = check_size_and_spp(s, &limits) {
+        return code;
     }
     if let Err((e, help)) = limits.check_pixels(s.width, s.height) {
-        return usage_error(&e, help.as_deref());
-    }
-    if let Err((e, help)) = limits.check_spp(s.spp) {
         return usage_error(&e, help.as_deref());
     }
     // Refuse a render the machine cannot hold before spending time on it.

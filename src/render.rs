@@ -161,14 +161,7 @@ pub fn render_with(
     integrator: &dyn Integrator,
     options: &RenderOptions,
 ) -> Result<Rendered, RenderError> {
-    let threads = options.threads;
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(threads.unwrap_or(0))
-        .build()
-        .map_err(|source| RenderError::Threads {
-            threads: threads.unwrap_or(0),
-            source,
-        })?;
+    let pool = thread_pool(options.threads)?;
     let s = &scene.settings;
     let (w, h) = (s.width, s.height);
     let tiles_x = w.div_ceil(TILE);
@@ -266,6 +259,17 @@ pub fn render_with(
         tiles_done: finished,
         tiles_total: n,
     })
+}
+
+/// A pool of `threads` render threads (`None`: one per core).
+pub(crate) fn thread_pool(threads: Option<usize>) -> Result<rayon::ThreadPool, RenderError> {
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(threads.unwrap_or(0))
+        .build()
+        .map_err(|source| RenderError::Threads {
+            threads: threads.unwrap_or(0),
+            source,
+        })
 }
 
 /// A step coprime with `n` near `n / phi`: `k * step mod n` then visits every index once,

@@ -6,17 +6,13 @@
 //! snell's own builds switch them off.
 #![no_main]
 
-use glam::{Vec2, Vec3, Vec3A};
+use glam::Vec3A;
 use libfuzzer_sys::fuzz_target;
-use snell::geometry::mesh::{Mesh, MeshInput, area_weighted_normals};
+use snell::geometry::mesh::Mesh;
 use snell::math::Ray;
-use snell::mesh_file::{MeshData, obj, ply};
+use snell::mesh_file::{obj, ply};
 use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
-
-/// Largest coordinate a scene accepts (snell's scene builder refuses larger vertices before
-/// building the mesh, so larger ones never reach `Mesh::new`).
-const MAX_MAGNITUDE: f32 = 1e15;
 
 fn empty_dir() -> &'static Path {
     static DIR: OnceLock<PathBuf> = OnceLock::new();
@@ -41,41 +37,9 @@ fuzz_target!(|data: &[u8]| {
     let Ok(data) = parsed else {
         return;
     };
-    let MeshData {
-        positions,
-        normals,
-        uvs,
-        triangles,
-        triangle_materials,
-        materials,
-        warnings: _,
-    } = data;
-    // What src/scene/meshes.rs checks and converts before `Mesh::new`.
-    if materials.len() > u16::MAX as usize {
+    // Checked and converted as a scene does, with `smooth = true` on a file without normals.
+    let Ok((input, _materials)) = data.into_mesh_input(Some(true)) else {
         return;
-    }
-    let positions: Vec<Vec3> = positions.into_iter().map(Vec3::from).collect();
-    if positions
-        .iter()
-        .any(|p| p.abs().max_element() > MAX_MAGNITUDE)
-    {
-        return;
-    }
-    let normals: Vec<Vec3> = if normals.is_empty() {
-        // `smooth = true` on a file without normals.
-        area_weighted_normals(&positions, &triangles)
-    } else {
-        normals.into_iter().map(Vec3::from).collect()
-    };
-    let input = MeshInput {
-        positions,
-        normals,
-        uvs: uvs
-            .into_iter()
-            .map(|[u, v]| Vec2::new(u, 1.0 - v))
-            .collect(),
-        triangles,
-        triangle_slots: triangle_materials.iter().map(|&m| m as u16).collect(),
     };
     let Ok((mesh, _dropped)) = Mesh::new(input) else {
         return;

@@ -102,13 +102,7 @@ struct Sample {
 
 /// Traces the ray through the centre of every pixel and records every view.
 pub fn render_aovs(scene: &Scene, threads: Option<usize>) -> Result<AovBuffers, RenderError> {
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(threads.unwrap_or(0))
-        .build()
-        .map_err(|source| RenderError::Threads {
-            threads: threads.unwrap_or(0),
-            source,
-        })?;
+    let pool = crate::render::thread_pool(threads)?;
     let (w, h) = (scene.settings.width, scene.settings.height);
     let rows: Vec<Vec<Sample>> = pool.install(|| {
         (0..h)

@@ -367,15 +367,11 @@ impl Whitted {
             }
             (c, record)
         };
-        if R::ACTIVE {
-            if let Some(b) = scene.opaque_blocker(&ray, distance) {
-                if let Some(r) = &mut record {
-                    r.blocked_by = Some(scene.objects[b].name.clone());
-                }
-                return finish(Color::ZERO, record);
+        if let Some(b) = scene.opaque_blocker(&ray, distance) {
+            if let Some(r) = &mut record {
+                r.blocked_by = Some(scene.objects[b].name.clone());
             }
-        } else if scene.opaque_blocked(&ray, distance) {
-            return (Color::ZERO, None);
+            return finish(Color::ZERO, record);
         }
         if !scene.has_transparent() {
             return finish(Color::ONE, record);

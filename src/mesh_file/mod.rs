@@ -55,6 +55,65 @@ pub struct MtlMaterial {
     pub map_kd: Option<PathBuf>,
 }
 
+/// Why file data cannot become a mesh for a scene (see [`MeshData::into_mesh_input`]).
+#[derive(Clone, Debug, PartialEq)]
+pub enum MeshInputError {
+    /// More materials than a triangle's `u16` slot can name.
+    TooManyMaterials(usize),
+    /// A vertex beyond [`crate::scene::MAX_MAGNITUDE`].
+    VertexTooFar(crate::math::Vec3),
+}
+
+impl MeshData {
+    /// The mesh as `Mesh::new` takes it, and the file's materials, as a scene builds it:
+    /// vertices beyond the magnitude scenes allow are refused; `smooth` `Some(false)` drops
+    /// the file's normals, `Some(true)` computes area-weighted ones where the file has none;
+    /// uvs are flipped to snell's convention (OBJ and PLY put v = 0 at the bottom of the
+    /// image, snell at the top).
+    pub fn into_mesh_input(
+        self,
+        smooth: Option<bool>,
+    ) -> Result<(crate::geometry::mesh::MeshInput, Vec<MtlMaterial>), MeshInputError> {
+        use crate::geometry::mesh::{MeshInput, area_weighted_normals};
+        use crate::math::{Vec2, Vec3};
+        let MeshData {
+            positions,
+            normals,
+            uvs,
+            triangles,
+            triangle_materials,
+            materials,
+            warnings: _,
+        } = self;
+        if materials.len() > u16::MAX as usize {
+            return Err(MeshInputError::TooManyMaterials(materials.len()));
+        }
+        let positions: Vec<Vec3> = positions.into_iter().map(Vec3::from).collect();
+        if let Some(p) = positions
+            .iter()
+            .find(|p| p.abs().max_element() > crate::scene::MAX_MAGNITUDE)
+        {
+            return Err(MeshInputError::VertexTooFar(*p));
+        }
+        let normals: Vec<Vec3> = match smooth {
+            Some(false) => vec![],
+            Some(true) if normals.is_empty() => area_weighted_normals(&positions, &triangles),
+            _ => normals.into_iter().map(Vec3::from).collect(),
+        };
+        let input = MeshInput {
+            positions,
+            normals,
+            uvs: uvs
+                .into_iter()
+                .map(|[u, v]| Vec2::new(u, 1.0 - v))
+                .collect(),
+            triangles,
+            triangle_slots: triangle_materials.iter().map(|&m| m as u16).collect(),
+        };
+        Ok((input, materials))
+    }
+}
+
 /// Why a mesh file could not be read.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct MeshError {

@@ -326,7 +326,7 @@ fn backticked(s: &str) -> Vec<String> {
 
 /// Largest magnitude of any number in a scene: its square (1e30) still fits in an `f32`, so
 /// lengths, areas and quadratics cannot overflow.
-pub(super) const MAX_MAGNITUDE: f32 = 1e15;
+pub const MAX_MAGNITUDE: f32 = 1e15;
 
 pub(super) struct Builder<'a> {
     problems: Vec<Problem>,

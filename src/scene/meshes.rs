@@ -6,10 +6,9 @@ use super::build::Builder;
 use super::diag::{DocPath, did_you_mean};
 use super::format::{MeshDef, MeshObjectDef};
 use crate::geometry::Mesh;
-use crate::geometry::mesh::{MeshInput, area_weighted_normals};
 use crate::material::Material;
-use crate::math::{Color, Vec2, Vec3};
-use crate::mesh_file::{self, MeshData, MtlMaterial};
+use crate::math::Color;
+use crate::mesh_file::{self, MeshInputError, MtlMaterial};
 use crate::texture::{ColorSpace, ImageData, Mapping, Pattern, Texture};
 use std::collections::{BTreeMap, HashMap};
 use std::path::{Path, PathBuf};
@@ -160,53 +159,26 @@ impl Builder<'_> {
             self.warnings.push(format!("{file}: {w}"));
         }
         let loader_notes = data.warnings.join("; ");
-        let MeshData {
-            positions,
-            normals,
-            uvs,
-            triangles,
-            triangle_materials,
-            materials,
-            warnings: _,
-        } = data;
-        if materials.len() > u16::MAX as usize {
-            self.error(
-                path.clone(),
-                format!(
-                    "{file} uses {} materials; at most {} are supported",
-                    materials.len(),
-                    u16::MAX
-                ),
-            );
-            return None;
-        }
-        let positions: Vec<Vec3> = positions.into_iter().map(Vec3::from).collect();
-        if let Some(p) = positions
-            .iter()
-            .find(|p| p.abs().max_element() > super::build::MAX_MAGNITUDE)
-        {
-            self.error_help(
-                path.clone(),
-                format!("{file} has a vertex at {p}, beyond the 1e15 snell accepts"),
-                "scale the model down in the file, or use a transform",
-            );
-            return None;
-        }
-        let normals: Vec<Vec3> = match smooth {
-            Some(false) => vec![],
-            Some(true) if normals.is_empty() => area_weighted_normals(&positions, &triangles),
-            _ => normals.into_iter().map(Vec3::from).collect(),
-        };
-        let input = MeshInput {
-            positions,
-            normals,
-            // OBJ and PLY put v = 0 at the bottom of the image, snell at the top.
-            uvs: uvs
-                .into_iter()
-                .map(|[u, v]| Vec2::new(u, 1.0 - v))
-                .collect(),
-            triangles,
-            triangle_slots: triangle_materials.iter().map(|&m| m as u16).collect(),
+        let (input, materials) = match data.into_mesh_input(smooth) {
+            Ok(converted) => converted,
+            Err(MeshInputError::TooManyMaterials(n)) => {
+                self.error(
+                    path.clone(),
+                    format!(
+                        "{file} uses {n} materials; at most {} are supported",
+                        u16::MAX
+                    ),
+                );
+                return None;
+            }
+            Err(MeshInputError::VertexTooFar(p)) => {
+                self.error_help(
+                    path.clone(),
+                    format!("{file} has a vertex at {p}, beyond the 1e15 snell accepts"),
+                    "scale the model down in the file, or use a transform",
+                );
+                return None;
+            }
         };
         let (mesh, dropped) = match Mesh::new(input) {
             Ok(m) => m,

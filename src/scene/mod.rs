@@ -6,7 +6,7 @@ mod diag;
 pub mod format;
 mod meshes;
 
-pub use build::{load, load_str, load_with};
+pub use build::{MAX_MAGNITUDE, load, load_str, load_with};
 pub use diag::{DocPath, Format, Problem, SceneDiagnostic, SceneError, Seg, did_you_mean};
 pub use format::schema;
 
