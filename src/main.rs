@@ -287,12 +287,15 @@ fn schema() -> ExitCode {
 }
 
 fn print_scene_error(e: &SceneError) {
-    let theme = if std::io::stderr().is_terminal() {
+    let terminal = std::io::stderr().is_terminal();
+    let theme = if terminal {
         miette::GraphicalTheme::unicode()
     } else {
         miette::GraphicalTheme::unicode_nocolor()
     };
-    let handler = miette::GraphicalReportHandler::new_themed(theme);
+    // Lines are wrapped for a person at a terminal only: piped into a log or a tool, a message
+    // stays on one line however long its paths are, so that grep finds it whole.
+    let handler = miette::GraphicalReportHandler::new_themed(theme).with_wrap_lines(terminal);
     for d in &e.diagnostics {
         let mut out = String::new();
         if handler.render_report(&mut out, d).is_err() {

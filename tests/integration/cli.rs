@@ -308,3 +308,26 @@ fn schema_prints_the_scene_format_as_json() {
     assert_eq!(printed["title"], "snell scene");
     assert!(stderr(&o).is_empty(), "{}", stderr(&o));
 }
+
+/// Regression: CI's checkout sat in a longer folder than the developer's, and miette wrapped
+/// the texture-limit message in the middle of `--max-texture-pixels`, so a test looking for
+/// the flag failed there only. Piped output is never wrapped, whatever the path's length.
+#[test]
+fn piped_messages_stay_on_one_line_however_long_the_path() {
+    let long = "a-folder-name-long-enough-to-push-a-message-past-two-hundred-columns-".repeat(3);
+    let dir = scratch("long-path").join(long);
+    std::fs::create_dir_all(&dir).unwrap();
+    let text = GOOD.replace(
+        "[materials.m]\ncolor = 1",
+        "[textures.t]\ntype = \"image\"\nfile = \"missing.png\"\n[materials.m]\ntexture = \"t\"",
+    );
+    let scene = write_scene(&dir, "s.toml", &text);
+    let o = expect(&["check", &scene], &dir, 2);
+    let err = stderr(&o);
+    let missing = dir.join("missing.png").display().to_string();
+    assert!(
+        err.lines()
+            .any(|l| l.contains(&format!("cannot read {missing}: ")) && l.contains("os error")),
+        "{err}"
+    );
+}
