@@ -38,11 +38,42 @@ impl Camera {
     /// top-left corner of the image) for an image of `width` by `height` pixels.
     #[inline]
     pub fn ray(&self, x: f32, y: f32, width: u32, height: u32) -> Ray {
+        self.raster(width, height).ray(x, y)
+    }
+
+    /// The camera set up for an image of `width` by `height` pixels, for many rays.
+    #[inline]
+    pub fn raster(&self, width: u32, height: u32) -> RasterCamera {
         let aspect = width as f32 / height as f32;
-        let sx = (2.0 * x / width as f32 - 1.0) * self.tan_half_fov * aspect;
-        let sy = (1.0 - 2.0 * y / height as f32) * self.tan_half_fov;
-        let dir = (self.forward + sx * self.right + sy * self.up).normalize();
-        Ray::new(self.position, dir)
+        let (half_w, half_h) = (self.tan_half_fov * aspect, self.tan_half_fov);
+        RasterCamera {
+            origin: self.position,
+            corner: self.forward - half_w * self.right + half_h * self.up,
+            per_x: self.right * (2.0 * half_w / width as f32),
+            per_y: self.up * (-2.0 * half_h / height as f32),
+        }
+    }
+}
+
+/// A camera for one image size: a film position's ray is two multiply-adds and a
+/// normalisation, with the divisions by the image's size done once.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RasterCamera {
+    origin: Vec3A,
+    /// Direction (not unit) through the film's top-left corner.
+    corner: Vec3A,
+    /// Change of that direction per pixel to the right.
+    per_x: Vec3A,
+    /// Change per pixel down.
+    per_y: Vec3A,
+}
+
+impl RasterCamera {
+    /// The ray through film position `(x, y)` in pixels, as [`Camera::ray`].
+    #[inline]
+    pub fn ray(&self, x: f32, y: f32) -> Ray {
+        let dir = self.corner + self.per_x * x + self.per_y * y;
+        Ray::new(self.origin, dir.normalize())
     }
 }
 

@@ -320,8 +320,9 @@ pub fn render_pixel(
 ) -> Color {
     let s = &scene.settings;
     let (mut sum, mut weight, mut unsigned) = (Color::ZERO, 0.0f32, Color::ZERO);
+    let camera = scene.camera.raster(s.width, s.height);
     for_each_sample(s, x, y, |px, py, sign| {
-        let ray = scene.camera.ray(px, py, s.width, s.height);
+        let ray = camera.ray(px, py);
         let c = integrator.radiance(scene, &ray, rays);
         // A non-finite sample would poison the whole pixel: leave it out, and say where.
         let c = if c.is_finite() {

@@ -5,8 +5,6 @@
 use super::triangle::WatertightRay;
 use super::{ShapeHit, Surface};
 use crate::math::{Aabb, Ray, Vec2, Vec3, Vec3A};
-// obvhs's traversal macro names `UVec2` unqualified.
-use glam::UVec2;
 use glam::Vec4;
 use obvhs::cwbvh::node::CwBvhNode;
 use std::time::{Duration, Instant};
@@ -200,59 +198,25 @@ impl Mesh {
     /// `prim` and `bary`.
     #[inline]
     pub fn intersect(&self, ray: &Ray, t_max: f32) -> Option<ShapeHit> {
-        let wt = WatertightRay::new(ray);
-        let nr = NodeRay::new(ray);
-        let mut t_max = t_max;
-        let mut best = None;
-        let mut state = self.bvh.traversal(ray.dir);
-        let mut node;
-        obvhs::traverse!(
-            self.bvh,
-            node,
-            state,
-            nr.hits(node, t_max, state.oct_inv4),
-            {
-                let prim = state.primitive_id;
-                let [a, b, c] = self.corners[prim as usize];
-                if let Some((t, u, v)) = wt.intersect(a.into(), b.into(), c.into(), t_max) {
-                    t_max = t;
-                    best = Some(ShapeHit {
-                        t,
-                        part: 0,
-                        prim,
-                        bary: Vec2::new(u, v),
-                    });
-                }
-            }
-        );
-        best
+        let mut closest = Closest {
+            corners: &self.corners,
+            ray: WatertightRay::new(ray),
+            best: None,
+        };
+        self.bvh.walk::<true>(ray, t_max, &mut closest);
+        closest.best
     }
 
     /// Whether any triangle is hit with `0 < t < t_max`; stops at the first found.
     #[inline]
     pub fn occluded(&self, ray: &Ray, t_max: f32) -> bool {
-        let wt = WatertightRay::new(ray);
-        let nr = NodeRay::new(ray);
-        let mut state = self.bvh.traversal(ray.dir);
-        let mut node;
-        let mut hit = false;
-        // The macro's own loops would swallow a plain `break`.
-        'search: {
-            obvhs::traverse!(
-                self.bvh,
-                node,
-                state,
-                nr.hits(node, t_max, state.oct_inv4),
-                {
-                    let [a, b, c] = self.corners[state.primitive_id as usize];
-                    if wt.intersect(a.into(), b.into(), c.into(), t_max).is_some() {
-                        hit = true;
-                        break 'search;
-                    }
-                }
-            );
-        }
-        hit
+        let mut any = Any {
+            corners: &self.corners,
+            ray: WatertightRay::new(ray),
+            hit: false,
+        };
+        self.bvh.walk::<false>(ray, t_max, &mut any);
+        any.hit
     }
 
     /// Surface details of a hit: the point re-projected from the barycentrics, the geometric
@@ -294,14 +258,64 @@ impl Mesh {
     }
 }
 
-/// A ray prepared for the tests against the eight quantised child boxes of a BVH node.
+/// What a BVH walk does with the triangles of the leaves it reaches. A trait rather than a
+/// closure, so that the triangle test is inlined into the walk.
+trait Visit {
+    /// Tests triangle `prim`, lowering `t_max` to a hit's distance; true stops the walk.
+    fn visit(&mut self, prim: u32, t_max: &mut f32) -> bool;
+}
+
+/// Closest-hit queries: keeps the nearest hit so far.
+struct Closest<'a> {
+    corners: &'a [[Vec3; 3]],
+    ray: WatertightRay,
+    best: Option<ShapeHit>,
+}
+
+impl Visit for Closest<'_> {
+    #[inline(always)]
+    fn visit(&mut self, prim: u32, t_max: &mut f32) -> bool {
+        let [a, b, c] = self.corners[prim as usize];
+        if let Some((t, u, v)) = self.ray.intersect(a.into(), b.into(), c.into(), *t_max) {
+            *t_max = t;
+            self.best = Some(ShapeHit {
+                t,
+                part: 0,
+                prim,
+                bary: Vec2::new(u, v),
+            });
+        }
+        false
+    }
+}
+
+/// Any-hit queries: stop at the first hit.
+struct Any<'a> {
+    corners: &'a [[Vec3; 3]],
+    ray: WatertightRay,
+    hit: bool,
+}
+
+impl Visit for Any<'_> {
+    #[inline(always)]
+    fn visit(&mut self, prim: u32, t_max: &mut f32) -> bool {
+        let [a, b, c] = self.corners[prim as usize];
+        self.hit = self
+            .ray
+            .intersect(a.into(), b.into(), c.into(), *t_max)
+            .is_some();
+        self.hit
+    }
+}
+
+/// A ray prepared for the tests against the eight child boxes of a BVH node.
 ///
 /// obvhs's own node test clips every box at a fixed distance of 1e-4 (so a scene in
 /// millimetres loses nearby hits) and culls flat boxes (a floor, a quad) by rounding; this one
 /// starts at 0 and gives the far side a relative slack, as snell's object BVH does.
 struct NodeRay {
-    origin: Vec3A,
-    inv_dir: Vec3A,
+    origin: [Vec4; 3],
+    inv_dir: [Vec4; 3],
     negative: [bool; 3],
 }
 
@@ -313,21 +327,21 @@ impl NodeRay {
         const CAP: f32 = 1e20;
         let inv = Vec3A::ONE / ray.dir;
         let capped = Vec3A::splat(CAP).copysign(inv);
+        let inv = Vec3A::select(inv.abs().cmple(Vec3A::splat(CAP)), inv, capped);
         NodeRay {
-            origin: ray.origin,
-            inv_dir: Vec3A::select(inv.abs().cmple(Vec3A::splat(CAP)), inv, capped),
+            origin: [0, 1, 2].map(|a| Vec4::splat(ray.origin[a])),
+            inv_dir: [0, 1, 2].map(|a| Vec4::splat(inv[a])),
             negative: [ray.dir.x < 0.0, ray.dir.y < 0.0, ray.dir.z < 0.0],
         }
     }
 
-    /// The traversal's hit mask for `node`: per child box met in `[0, t_max]`, its bits in
-    /// obvhs's encoding (inner children in the high byte, leaf triangles in the low 24 bits).
+    /// Entry distances into the eight child boxes of `node`, and a bit per child whose box
+    /// the ray meets in `[0, t_max]`. Empty children have inverted boxes, which never meet.
     #[inline(always)]
-    fn hits(&self, node: &WideNode, t_max: f32, oct_inv4: u32) -> u32 {
-        let (child_bits, bit_index) = node.child_and_index_bits(oct_inv4);
-        let mut mask = 0u32;
-        for half in 0..2 {
-            let lanes = half * 4..half * 4 + 4;
+    fn hits(&self, node: &WideNode, t_max: f32) -> ([Vec4; 2], u32) {
+        let mut nears = [Vec4::ZERO; 2];
+        let mut mask = 0;
+        for (half, nears) in nears.iter_mut().enumerate() {
             let mut near = Vec4::ZERO;
             let mut far = Vec4::splat(f32::INFINITY);
             for axis in 0..3 {
@@ -336,115 +350,163 @@ impl NodeRay {
                 } else {
                     (&node.lo[axis], &node.hi[axis])
                 };
-                let (o, inv) = (
-                    Vec4::splat(self.origin[axis]),
-                    Vec4::splat(self.inv_dir[axis]),
-                );
-                near = near.max((Vec4::from_slice(&n[lanes.clone()]) - o) * inv);
-                far = far.min((Vec4::from_slice(&f[lanes.clone()]) - o) * inv);
+                let (o, inv) = (self.origin[axis], self.inv_dir[axis]);
+                near = near.max((n[half] - o) * inv);
+                far = far.min((f[half] - o) * inv);
             }
             let far = (far * SLACK).min(Vec4::splat(t_max));
-            let hit = near.cmple(far).bitmask();
-            for lane in 0..4 {
-                if hit & (1 << lane) != 0 {
-                    let child = half * 4 + lane;
-                    mask |= byte(child_bits, child) << byte(bit_index, child);
-                }
-            }
+            mask |= near.cmple(far).bitmask() << (half * 4);
+            *nears = near;
         }
-        mask
+        (nears, mask)
     }
 }
 
-/// Byte `i` of `x`.
-#[inline(always)]
-fn byte(x: u64, i: usize) -> u32 {
-    ((x >> (i * 8)) & 0xff) as u32
-}
+/// Marks a child reference as a leaf: `LEAF | (count - 1) << COUNT_SHIFT | first triangle`.
+const LEAF: u32 = 1 << 31;
+/// Where a leaf's triangle count (1 to 3, less one) sits in its reference.
+const COUNT_SHIFT: u32 = 29;
+/// The first-triangle bits of a leaf reference.
+const FIRST_MASK: u32 = (1 << COUNT_SHIFT) - 1;
 
 /// A node of the eight-wide BVH: obvhs's compressed node with its child boxes decoded to
-/// floats once, at build time (decoding eight quantised boxes per node visit cost more
-/// than reading the larger node). The field names are those obvhs's `traverse!` reads.
+/// floats and its children's references decoded once, at build time (decoding eight
+/// quantised boxes per node visit cost more than reading the larger node).
 #[derive(Clone, Copy, Debug, PartialEq)]
 struct WideNode {
-    /// Smallest corner of each child's box, per axis.
-    lo: [[f32; 8]; 3],
-    /// Largest corner of each child's box, per axis.
-    hi: [[f32; 8]; 3],
-    /// First inner child's node index.
-    child_base_idx: u32,
-    /// First triangle of the leaf children.
-    primitive_base_idx: u32,
-    /// Per child: leaf triangle count and offset, or the inner child's slot (obvhs's format).
-    child_meta: [u8; 8],
-    /// Which children are inner nodes.
-    imask: u8,
+    /// Smallest corner of each child's box, per axis, four children to a vector (+inf for
+    /// empty children). Whole vectors, so that a node test loads each with one instruction.
+    lo: [[Vec4; 2]; 3],
+    /// Largest corner of each child's box, per axis (-inf for empty children).
+    hi: [[Vec4; 2]; 3],
+    /// Per child: an inner node's index, or a leaf reference (see [`LEAF`]).
+    child: [u32; 8],
 }
 
 impl WideNode {
     fn from_cw(n: &CwBvhNode) -> Self {
-        let mut lo = [[f32::INFINITY; 8]; 3];
-        let mut hi = [[f32::NEG_INFINITY; 8]; 3];
-        for child in 0..8 {
-            if n.is_child_empty(child) {
+        let mut lo = [[Vec4::INFINITY; 2]; 3];
+        let mut hi = [[Vec4::NEG_INFINITY; 2]; 3];
+        let mut child = [0; 8];
+        for (i, c) in child.iter_mut().enumerate() {
+            let meta = n.child_meta[i];
+            if meta == 0 {
                 continue;
             }
-            let b = n.child_aabb(child);
+            let b = n.child_aabb(i);
             for axis in 0..3 {
-                lo[axis][child] = b.min[axis];
-                hi[axis][child] = b.max[axis];
+                lo[axis][i / 4][i % 4] = b.min[axis];
+                hi[axis][i / 4][i % 4] = b.max[axis];
             }
+            // Ylitie et al.'s encoding, as obvhs stores it: inner children have meta
+            // 0b001_11xxx (their slot, 24 to 31, in the low five bits); leaves hold their
+            // triangle count in unary in the top three bits and their first triangle's
+            // offset in the low five.
+            *c = if meta & 0b11000 == 0b11000 {
+                n.child_node_index(i)
+            } else {
+                let (first, count) = n.child_primitives(i);
+                LEAF | (count.clamp(1, 3) - 1) << COUNT_SHIFT | first
+            };
         }
-        WideNode {
-            lo,
-            hi,
-            child_base_idx: n.child_base_idx,
-            primitive_base_idx: n.primitive_base_idx,
-            child_meta: n.child_meta,
-            imask: n.imask,
-        }
-    }
-
-    /// Per child (one byte each): the bits it sets in the traversal's hit mask, and where.
-    /// Inner children set one bit in the high byte, at a slot ordered by the ray's octant;
-    /// leaves set one bit per triangle in the low 24 bits. This is the encoding of Ylitie et
-    /// al.'s compressed wide BVH, as obvhs stores it in `child_meta`.
-    #[inline(always)]
-    fn child_and_index_bits(&self, oct_inv4: u32) -> (u64, u64) {
-        const EACH_BYTE: u64 = 0x0101_0101_0101_0101;
-        let meta = u64::from_le_bytes(self.child_meta);
-        let octant = (oct_inv4 as u64) | ((oct_inv4 as u64) << 32);
-        // Inner children have meta 0b001_11xxx (slot 24..32): bits 3 and 4 both set.
-        let inner = (meta & (meta << 1)) & (EACH_BYTE << 4);
-        let inner_bytes = (inner >> 4) * 0xff;
-        let bit_index = (meta ^ (octant & inner_bytes)) & (EACH_BYTE * 0x1f);
-        let child_bits = (meta >> 5) & (EACH_BYTE * 0x07);
-        (child_bits, bit_index)
+        WideNode { lo, hi, child }
     }
 }
 
-/// The eight-wide BVH of a mesh.
+/// The eight-wide BVH of a mesh, walked nearest child first.
 #[derive(Clone, Debug, PartialEq, Default)]
 struct WideBvh {
     nodes: Vec<WideNode>,
+    /// Levels of nodes below the root, the root included.
+    depth: usize,
 }
 
 impl WideBvh {
     fn from_cwbvh(cw: &obvhs::cwbvh::CwBvh) -> Self {
-        WideBvh {
-            nodes: cw.nodes.iter().map(WideNode::from_cw).collect(),
+        let nodes: Vec<WideNode> = cw.nodes.iter().map(WideNode::from_cw).collect();
+        // Depth, without recursion (a degenerate mesh can make a very deep tree).
+        let mut depth = 0;
+        let mut todo = vec![];
+        if !nodes.is_empty() {
+            todo.push((0u32, 1usize));
+        }
+        while let Some((i, d)) = todo.pop() {
+            depth = depth.max(d);
+            let n = &nodes[i as usize];
+            for (k, &c) in n.child.iter().enumerate() {
+                if c & LEAF == 0 && n.lo[0][k / 4][k % 4] <= n.hi[0][k / 4][k % 4] {
+                    todo.push((c, d + 1));
+                }
+            }
+        }
+        WideBvh { nodes, depth }
+    }
+
+    /// Calls `visit.visit(triangle, t_max)` for every triangle whose leaf box the ray meets before
+    /// `t_max` (which `visit` may lower); `visit` returns true to stop. `ORDERED`: nearer
+    /// children first (closest-hit queries); otherwise in the order found (any-hit queries).
+    #[inline(always)]
+    fn walk<const ORDERED: bool>(&self, ray: &Ray, t_max: f32, visit: &mut impl Visit) {
+        // Each level pushes at most seven more entries than it pops. A stack sized for the
+        // tree at hand: setting up a larger one costs every ray.
+        match 7 * self.depth + 1 {
+            0..=64 => self.walk_with::<ORDERED, 64>(ray, t_max, visit, &mut []),
+            65..=160 => self.walk_with::<ORDERED, 160>(ray, t_max, visit, &mut []),
+            n => self.walk_with::<ORDERED, 0>(ray, t_max, visit, &mut vec![(0, 0.0); n]),
         }
     }
 
-    /// Traversal state for a ray going along `dir`.
+    /// [`WideBvh::walk`] with a stack of `N` entries on the machine stack, or `heap` when
+    /// `N` is 0 (trees too deep for a fixed array).
     #[inline(always)]
-    fn traversal(&self, dir: Vec3A) -> obvhs::cwbvh::Traversal {
-        let mut t = obvhs::cwbvh::Traversal::default();
-        t.reinit(dir);
+    fn walk_with<const ORDERED: bool, const N: usize>(
+        &self,
+        ray: &Ray,
+        mut t_max: f32,
+        visit: &mut impl Visit,
+        heap: &mut [(u32, f32)],
+    ) {
         if self.nodes.is_empty() {
-            t.current_group = UVec2::ZERO;
+            return;
         }
-        t
+        let nr = NodeRay::new(ray);
+        let mut fixed = [(0u32, 0.0f32); N];
+        let stack: &mut [(u32, f32)] = if N == 0 { heap } else { &mut fixed };
+        stack[0] = (0, 0.0);
+        let mut top = 1;
+        while top > 0 {
+            top -= 1;
+            let (r, near) = stack[top];
+            if near > t_max {
+                continue;
+            }
+            if r & LEAF != 0 {
+                let first = r & FIRST_MASK;
+                let count = ((r & !LEAF) >> COUNT_SHIFT) + 1;
+                for prim in first..first + count {
+                    if visit.visit(prim, &mut t_max) {
+                        return;
+                    }
+                }
+                continue;
+            }
+            let node = &self.nodes[r as usize];
+            let (nears, mut mask) = nr.hits(node, t_max);
+            let base = top;
+            while mask != 0 {
+                let k = mask.trailing_zeros() as usize;
+                mask &= mask - 1;
+                let entry = (node.child[k], nears[k / 4][k % 4]);
+                let mut at = top;
+                // Farthest first, so the nearest is popped next.
+                while ORDERED && at > base && stack[at - 1].1 < entry.1 {
+                    stack[at] = stack[at - 1];
+                    at -= 1;
+                }
+                stack[at] = entry;
+                top += 1;
+            }
+        }
     }
 }
 

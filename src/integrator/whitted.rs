@@ -135,9 +135,11 @@ impl Whitted {
             return c;
         };
         let c = self.shade(scene, ray, &hit, seg, rays, rec);
-        let distance = (hit.point - seg.from).length();
+        // Only absorption and fog need the distance (a square root on every ray).
+        let distance = || (hit.point - seg.from).length();
         let c = match (seg.medium, scene.fog) {
-            (Some(sigma), _) => {
+            (Some(sigma), _) if sigma != Color::ZERO || R::ACTIVE => {
+                let distance = distance();
                 let kept = beer_lambert(sigma, distance);
                 if R::ACTIVE && sigma != Color::ZERO {
                     rec.note(format!(
@@ -147,12 +149,13 @@ impl Whitted {
                 c * kept
             }
             (None, Some(fog)) => {
+                let distance = distance();
                 if R::ACTIVE {
                     rec.note(format!("fog over {distance}"));
                 }
                 fog.apply(c, distance)
             }
-            (None, None) => c,
+            _ => c,
         };
         rec.end_ray(c);
         c
