@@ -42,9 +42,25 @@ struct Node4 {
     child: [u32; 4],
 }
 
+/// Scenes with at most this many bounded objects get no tree: their boxes are tested all at
+/// once, two four-wide tests, and the objects met visited nearest first. Small scenes (the
+/// seed scene has eight) are what learners write most, and a tree's stack and indirections
+/// cost them more than the two extra box tests.
+const FLAT: usize = 8;
+
+/// The boxes of a small scene, four to a [`Node4`], lanes naming object indices.
+#[derive(Clone, Copy, Debug)]
+struct Flat {
+    groups: [Node4; 2],
+    /// A bit per lane that holds an object.
+    used: u32,
+}
+
 /// The objects of a scene, arranged for fast ray queries.
 #[derive(Clone, Debug, Default)]
 pub struct Bvh {
+    /// Small scenes: every bounded object's box, instead of a tree.
+    flat: Option<Flat>,
     nodes: Vec<Node4>,
     /// `(first, count)` ranges of `order`.
     leaves: Vec<(u32, u32)>,
@@ -118,7 +134,26 @@ impl Bvh {
                 _ => bvh.unbounded.push(i as u32),
             }
         }
-        if !items.is_empty() {
+        if !items.is_empty() && items.len() <= FLAT {
+            let mut flat = Flat {
+                groups: [Node4 {
+                    min: [Vec4::splat(f32::INFINITY); 3],
+                    max: [Vec4::splat(f32::NEG_INFINITY); 3],
+                    child: [NO_CHILD; 4],
+                }; 2],
+                used: 0,
+            };
+            for (k, (i, b)) in items.iter().enumerate() {
+                let g = &mut flat.groups[k / 4];
+                for axis in 0..3 {
+                    g.min[axis][k % 4] = b.min[axis];
+                    g.max[axis][k % 4] = b.max[axis];
+                }
+                g.child[k % 4] = *i;
+                flat.used |= 1 << k;
+            }
+            bvh.flat = Some(flat);
+        } else if !items.is_empty() {
             let mut binary = vec![BinaryNode {
                 bounds: Aabb::EMPTY,
                 first: 0,
@@ -134,7 +169,8 @@ impl Bvh {
 
     /// Bytes the hierarchy takes.
     pub fn bytes(&self) -> usize {
-        self.nodes.len() * std::mem::size_of::<Node4>()
+        self.flat.map_or(0, |_| std::mem::size_of::<Flat>())
+            + self.nodes.len() * std::mem::size_of::<Node4>()
             + self.leaves.len() * 8
             + (self.order.len() + self.unbounded.len()) * 4
     }
@@ -204,12 +240,63 @@ impl Bvh {
         t_max: f32,
         visit: impl FnMut(usize, &mut f32) -> Result<(), ()>,
     ) {
-        // Every ray sets up a stack: a small scene needs only a few entries, and filling the
-        // full one cost 7 % of the seed scene's time.
-        if self.depth <= SMALL_DEPTH {
+        if let Some(flat) = &self.flat {
+            self.traverse_flat::<ORDERED>(flat, ray, t_max, visit)
+        } else if self.depth <= SMALL_DEPTH {
+            // Every ray sets up a stack: a small tree needs only a few entries, and filling
+            // the full one cost 7 % of the seed scene's time.
             self.traverse_with::<ORDERED, { 3 * SMALL_DEPTH + 1 }>(ray, t_max, visit)
         } else {
             self.traverse_with::<ORDERED, STACK>(ray, t_max, visit)
+        }
+    }
+
+    /// [`Bvh::traverse`] for a scene without a tree: all boxes at once, then the objects
+    /// met, nearest box first when `ORDERED`.
+    #[inline(always)]
+    fn traverse_flat<const ORDERED: bool>(
+        &self,
+        flat: &Flat,
+        ray: &Ray,
+        mut t_max: f32,
+        mut visit: impl FnMut(usize, &mut f32) -> Result<(), ()>,
+    ) {
+        for &i in &self.unbounded {
+            if visit(i as usize, &mut t_max).is_err() {
+                return;
+            }
+        }
+        let br = BoxRay::new(ray);
+        let (n0, m0) = br.hits4(&flat.groups[0], t_max);
+        let (n1, m1) = br.hits4(&flat.groups[1], t_max);
+        let (n0, n1) = (n0.to_array(), n1.to_array());
+        let nears: [f32; 8] = std::array::from_fn(|k| if k < 4 { n0[k] } else { n1[k - 4] });
+        let mut mask = (m0 | m1 << 4) & flat.used;
+        while mask != 0 {
+            let k = if ORDERED {
+                // The nearest box left (a handful at most: a linear search beats sorting).
+                let mut m = mask;
+                let mut k = m.trailing_zeros() as usize;
+                m &= m - 1;
+                while m != 0 {
+                    let j = m.trailing_zeros() as usize;
+                    m &= m - 1;
+                    if nears[j] < nears[k] {
+                        k = j;
+                    }
+                }
+                if nears[k] > t_max {
+                    // Every box left starts beyond the hit found.
+                    return;
+                }
+                k
+            } else {
+                mask.trailing_zeros() as usize
+            };
+            mask &= !(1 << k);
+            if visit(flat.groups[k / 4].child[k % 4] as usize, &mut t_max).is_err() {
+                return;
+            }
         }
     }
 
@@ -395,4 +482,83 @@ fn split(
 fn area(b: &Aabb) -> f32 {
     let d = (b.max - b.min).max(Vec3A::ZERO);
     d.x * d.y + d.y * d.z + d.z * d.x
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::{Shape, Sphere};
+    use crate::math::Rng;
+
+    fn spheres(n: usize, rng: &mut Rng) -> Vec<Object> {
+        (0..n)
+            .map(|i| {
+                // Crowded, so that rays cross several boxes and the order of visits matters.
+                let center = Vec3A::new(
+                    rng.next_f32() * 8.0 - 4.0,
+                    rng.next_f32() * 8.0 - 4.0,
+                    rng.next_f32() * 8.0 - 4.0,
+                );
+                let shape = Shape::Sphere(Sphere {
+                    center,
+                    radius: 0.3 + rng.next_f32() * 2.0,
+                });
+                Object {
+                    name: format!("sphere {i}"),
+                    world_bounds: shape.bounds(),
+                    shape,
+                    transform: None,
+                    material: 0,
+                    slot_materials: vec![],
+                    center,
+                }
+            })
+            .collect()
+    }
+
+    /// Both layouts, the flat one of small scenes and the tree, give what testing every
+    /// object gives: the same nearest hit, and a blocker exactly when there is one.
+    #[test]
+    fn flat_and_tree_layouts_agree_with_testing_every_object() {
+        let mut rng = Rng::new(11);
+        for n in [1, 2, 5, FLAT - 1, FLAT, FLAT + 1, 13, 40] {
+            let objects = spheres(n, &mut rng);
+            let bvh = Bvh::build(&objects);
+            assert_eq!(bvh.flat.is_some(), n <= FLAT);
+            for _ in 0..2000 {
+                let origin = Vec3A::new(
+                    rng.next_f32() * 16.0 - 8.0,
+                    rng.next_f32() * 16.0 - 8.0,
+                    rng.next_f32() * 16.0 - 8.0,
+                );
+                let dir = Vec3A::new(
+                    rng.next_f32() - 0.5,
+                    rng.next_f32() - 0.5,
+                    rng.next_f32() - 0.5,
+                )
+                .normalize();
+                let ray = Ray::new(origin, dir);
+                let t_max = if rng.next_f32() < 0.5 {
+                    8.0
+                } else {
+                    f32::INFINITY
+                };
+                let brute = objects
+                    .iter()
+                    .enumerate()
+                    .filter_map(|(i, o)| o.intersect(&ray, t_max).map(|h| (i, h.t)))
+                    .min_by(|a, b| a.1.total_cmp(&b.1));
+                let found = bvh
+                    .closest_hit(&objects, &ray, t_max)
+                    .map(|(i, h)| (i, h.t));
+                assert_eq!(found, brute, "{n} objects, {ray:?}");
+                let odd = |i: usize| i % 2 == 1;
+                let blocked = objects
+                    .iter()
+                    .enumerate()
+                    .any(|(i, o)| odd(i) && o.intersect(&ray, t_max).is_some());
+                assert_eq!(bvh.any_hit(&objects, &ray, t_max, odd), blocked);
+            }
+        }
+    }
 }
