@@ -392,6 +392,33 @@ impl Bvh {
         self.first_blocker(objects, ray, t_max, blocks).is_some()
     }
 
+    /// [`Bvh::first_blocker`], and whether the ray met the bounds of any object that does
+    /// not block (before a blocker was found): when it met none, no such object can be hit
+    /// in `(0, t_max)` either, and a shadow ray need not look for glass.
+    #[inline]
+    pub fn first_blocker_and_others(
+        &self,
+        objects: &[Object],
+        ray: &Ray,
+        t_max: f32,
+        blocks: impl Fn(usize) -> bool,
+    ) -> (Option<usize>, bool) {
+        let mut found = None;
+        let mut others = false;
+        self.traverse::<false>(ray, t_max, |i, limit| {
+            if !blocks(i) {
+                others = true;
+                Ok(())
+            } else if objects[i].occluded(ray, *limit) {
+                found = Some(i);
+                Err(())
+            } else {
+                Ok(())
+            }
+        });
+        (found, others)
+    }
+
     /// The first object found (not necessarily the nearest) for which `blocks(i)` holds and
     /// that the ray hits in `(0, t_max)`.
     #[inline]

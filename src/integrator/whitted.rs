@@ -370,13 +370,17 @@ impl Whitted {
             }
             (c, record)
         };
-        if let Some(b) = scene.opaque_blocker(&ray, distance) {
+        // One walk finds an opaque blocker and says whether any glass's bounds lie on the
+        // way; only then is the glass looked for (in the seed scene, most shadow rays pass
+        // nowhere near the diamond).
+        let (blocker, glass_near) = scene.opaque_blocker_seeing_glass(&ray, distance);
+        if let Some(b) = blocker {
             if let Some(r) = &mut record {
                 r.blocked_by = Some(scene.objects[b].name.clone());
             }
             return finish(Color::ZERO, record);
         }
-        if !scene.has_transparent() {
+        if !glass_near {
             return finish(Color::ONE, record);
         }
         let mut visible = Color::ONE;
