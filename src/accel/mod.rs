@@ -544,7 +544,8 @@ mod tests {
     }
 
     /// Both layouts, the flat one of small scenes and the tree, give what testing every
-    /// object gives: the same nearest hit, and a blocker exactly when there is one.
+    /// object gives: the same nearest hit, a blocker exactly when there is one, and word of
+    /// the other objects whenever one of them is hit.
     #[test]
     fn flat_and_tree_layouts_agree_with_testing_every_object() {
         let mut rng = Rng::new(11);
@@ -585,6 +586,15 @@ mod tests {
                     .enumerate()
                     .any(|(i, o)| odd(i) && o.intersect(&ray, t_max).is_some());
                 assert_eq!(bvh.any_hit(&objects, &ray, t_max, odd), blocked);
+                // Without a blocker, "met no other object's bounds" must mean no other
+                // object is hit: shadow rays skip the glass on its word.
+                let (blocker, others) = bvh.first_blocker_and_others(&objects, &ray, t_max, odd);
+                assert_eq!(blocker.is_some(), blocked);
+                let other_hit = objects
+                    .iter()
+                    .enumerate()
+                    .any(|(i, o)| !odd(i) && o.intersect(&ray, t_max).is_some());
+                assert!(blocked || others || !other_hit, "{n} objects, {ray:?}");
             }
         }
     }
