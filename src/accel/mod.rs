@@ -42,6 +42,24 @@ struct Node4 {
     child: [u32; 4],
 }
 
+impl Node4 {
+    /// No children: every lane's box is inverted and names no child.
+    const EMPTY: Node4 = Node4 {
+        min: [Vec4::splat(f32::INFINITY); 3],
+        max: [Vec4::splat(f32::NEG_INFINITY); 3],
+        child: [NO_CHILD; 4],
+    };
+
+    /// Puts `child`, with bounds `b`, in lane `lane`.
+    fn set_lane(&mut self, lane: usize, b: &Aabb, child: u32) {
+        for axis in 0..3 {
+            self.min[axis][lane] = b.min[axis];
+            self.max[axis][lane] = b.max[axis];
+        }
+        self.child[lane] = child;
+    }
+}
+
 /// Scenes with at most this many bounded objects get no tree: their boxes are tested all at
 /// once, two four-wide tests, and the objects met visited nearest first. Small scenes (the
 /// seed scene has eight) are what learners write most, and a tree's stack and indirections
@@ -136,20 +154,11 @@ impl Bvh {
         }
         if !items.is_empty() && items.len() <= FLAT {
             let mut flat = Flat {
-                groups: [Node4 {
-                    min: [Vec4::splat(f32::INFINITY); 3],
-                    max: [Vec4::splat(f32::NEG_INFINITY); 3],
-                    child: [NO_CHILD; 4],
-                }; 2],
+                groups: [Node4::EMPTY; 2],
                 used: 0,
             };
             for (k, (i, b)) in items.iter().enumerate() {
-                let g = &mut flat.groups[k / 4];
-                for axis in 0..3 {
-                    g.min[axis][k % 4] = b.min[axis];
-                    g.max[axis][k % 4] = b.max[axis];
-                }
-                g.child[k % 4] = *i;
+                flat.groups[k / 4].set_lane(k % 4, b, *i);
                 flat.used |= 1 << k;
             }
             bvh.flat = Some(flat);
@@ -213,19 +222,10 @@ impl Bvh {
             kids.push(binary[k].first as usize + 1);
         }
         let index = self.nodes.len();
-        self.nodes.push(Node4 {
-            min: [Vec4::splat(f32::INFINITY); 3],
-            max: [Vec4::splat(f32::NEG_INFINITY); 3],
-            child: [NO_CHILD; 4],
-        });
+        self.nodes.push(Node4::EMPTY);
         for (lane, &k) in kids.iter().enumerate() {
             let child = self.collapse(binary, k);
-            let n = &mut self.nodes[index];
-            for axis in 0..3 {
-                n.min[axis][lane] = binary[k].bounds.min[axis];
-                n.max[axis][lane] = binary[k].bounds.max[axis];
-            }
-            n.child[lane] = child;
+            self.nodes[index].set_lane(lane, &binary[k].bounds, child);
         }
         index as u32
     }
@@ -237,9 +237,14 @@ impl Bvh {
     fn traverse<const ORDERED: bool>(
         &self,
         ray: &Ray,
-        t_max: f32,
-        visit: impl FnMut(usize, &mut f32) -> Result<(), ()>,
+        mut t_max: f32,
+        mut visit: impl FnMut(usize, &mut f32) -> Result<(), ()>,
     ) {
+        for &i in &self.unbounded {
+            if visit(i as usize, &mut t_max).is_err() {
+                return;
+            }
+        }
         if let Some(flat) = &self.flat {
             self.traverse_flat::<ORDERED>(flat, ray, t_max, visit)
         } else if self.depth <= SMALL_DEPTH {
@@ -251,8 +256,8 @@ impl Bvh {
         }
     }
 
-    /// [`Bvh::traverse`] for a scene without a tree: all boxes at once, then the objects
-    /// met, nearest box first when `ORDERED`.
+    /// [`Bvh::traverse`]'s bounded objects for a scene without a tree: all boxes at once,
+    /// then the objects met, nearest box first when `ORDERED`.
     #[inline(always)]
     fn traverse_flat<const ORDERED: bool>(
         &self,
@@ -261,11 +266,6 @@ impl Bvh {
         mut t_max: f32,
         mut visit: impl FnMut(usize, &mut f32) -> Result<(), ()>,
     ) {
-        for &i in &self.unbounded {
-            if visit(i as usize, &mut t_max).is_err() {
-                return;
-            }
-        }
         let br = BoxRay::new(ray);
         let (n0, m0) = br.hits4(&flat.groups[0], t_max);
         let (n1, m1) = br.hits4(&flat.groups[1], t_max);
@@ -300,8 +300,8 @@ impl Bvh {
         }
     }
 
-    /// [`Bvh::traverse`] with a stack of `N` entries, which must be at least
-    /// `3 * self.depth + 1`.
+    /// [`Bvh::traverse`]'s bounded objects, through the tree, with a stack of `N` entries,
+    /// which must be at least `3 * self.depth + 1`.
     #[inline(always)]
     fn traverse_with<const ORDERED: bool, const N: usize>(
         &self,
@@ -309,11 +309,6 @@ impl Bvh {
         mut t_max: f32,
         mut visit: impl FnMut(usize, &mut f32) -> Result<(), ()>,
     ) {
-        for &i in &self.unbounded {
-            if visit(i as usize, &mut t_max).is_err() {
-                return;
-            }
-        }
         let Some((root, bounds)) = self.root else {
             return;
         };
@@ -346,15 +341,7 @@ impl Bvh {
             let base = top;
             for lane in 0..4 {
                 if mask & (1 << lane) != 0 && n.child[lane] != NO_CHILD {
-                    let entry = (n.child[lane], nears[lane]);
-                    let mut k = top;
-                    // Any-hit queries stop at the first hit wherever it is: no sorting.
-                    while ORDERED && k > base && stack[k - 1].1 < entry.1 {
-                        stack[k] = stack[k - 1];
-                        k -= 1;
-                    }
-                    stack[k] = entry;
-                    top += 1;
+                    push_child::<ORDERED>(&mut stack, base, &mut top, (n.child[lane], nears[lane]));
                 }
             }
         }
@@ -429,16 +416,7 @@ impl Bvh {
         t_max: f32,
         blocks: impl Fn(usize) -> bool,
     ) -> Option<usize> {
-        let mut found = None;
-        self.traverse::<false>(ray, t_max, |i, limit| {
-            if blocks(i) && objects[i].occluded(ray, *limit) {
-                found = Some(i);
-                Err(())
-            } else {
-                Ok(())
-            }
-        });
-        found
+        self.first_blocker_and_others(objects, ray, t_max, blocks).0
     }
 }
 
@@ -504,6 +482,26 @@ fn split(
     let (l, r) = items.split_at_mut(at);
     split(nodes, order, first_child, l, depth + 1);
     split(nodes, order, first_child + 1, r, depth + 1);
+}
+
+/// Pushes `entry` (a child's reference and where the ray enters its box) on top of
+/// `stack[..*top]`. When `ORDERED`, the entries pushed since `base` stay sorted farthest
+/// first, so that the nearest child is popped next; any-hit walks stop at the first hit
+/// wherever it is and skip the sorting. Shared by the object BVH and the mesh BVHs.
+#[inline(always)]
+pub(crate) fn push_child<const ORDERED: bool>(
+    stack: &mut [(u32, f32)],
+    base: usize,
+    top: &mut usize,
+    entry: (u32, f32),
+) {
+    let mut at = *top;
+    while ORDERED && at > base && stack[at - 1].1 < entry.1 {
+        stack[at] = stack[at - 1];
+        at -= 1;
+    }
+    stack[at] = entry;
+    *top += 1;
 }
 
 fn area(b: &Aabb) -> f32 {

@@ -4,6 +4,7 @@
 
 use super::triangle::WatertightRay;
 use super::{ShapeHit, Surface};
+use crate::accel::push_child;
 use crate::math::{Aabb, Ray, Vec2, Vec3, Vec3A};
 use glam::Vec4;
 use obvhs::cwbvh::node::CwBvhNode;
@@ -198,25 +199,25 @@ impl Mesh {
     /// `prim` and `bary`.
     #[inline]
     pub fn intersect(&self, ray: &Ray, t_max: f32) -> Option<ShapeHit> {
-        let mut closest = Closest {
+        let mut closest = TriangleQuery::<false> {
             corners: &self.corners,
             ray: WatertightRay::new(ray),
-            best: None,
+            hit: None,
         };
         self.bvh.walk::<true>(ray, t_max, &mut closest);
-        closest.best
+        closest.hit
     }
 
     /// Whether any triangle is hit with `0 < t < t_max`; stops at the first found.
     #[inline]
     pub fn occluded(&self, ray: &Ray, t_max: f32) -> bool {
-        let mut any = Any {
+        let mut any = TriangleQuery::<true> {
             corners: &self.corners,
             ray: WatertightRay::new(ray),
-            hit: false,
+            hit: None,
         };
         self.bvh.walk::<false>(ray, t_max, &mut any);
-        any.hit
+        any.hit.is_some()
     }
 
     /// Surface details of a hit: the point re-projected from the barycentrics, the geometric
@@ -265,46 +266,29 @@ trait Visit {
     fn visit(&mut self, prim: u32, t_max: &mut f32) -> bool;
 }
 
-/// Closest-hit queries: keeps the nearest hit so far.
-struct Closest<'a> {
+/// A ray's query of a mesh's triangles: the nearest hit (`ANY` false), or any hit, the walk
+/// stopping at the first (`ANY` true).
+struct TriangleQuery<'a, const ANY: bool> {
     corners: &'a [[Vec3; 3]],
     ray: WatertightRay,
-    best: Option<ShapeHit>,
+    hit: Option<ShapeHit>,
 }
 
-impl Visit for Closest<'_> {
+impl<const ANY: bool> Visit for TriangleQuery<'_, ANY> {
     #[inline(always)]
     fn visit(&mut self, prim: u32, t_max: &mut f32) -> bool {
         let [a, b, c] = self.corners[prim as usize];
         if let Some((t, u, v)) = self.ray.intersect(a.into(), b.into(), c.into(), *t_max) {
             *t_max = t;
-            self.best = Some(ShapeHit {
+            self.hit = Some(ShapeHit {
                 t,
                 part: 0,
                 prim,
                 bary: Vec2::new(u, v),
             });
+            return ANY;
         }
         false
-    }
-}
-
-/// Any-hit queries: stop at the first hit.
-struct Any<'a> {
-    corners: &'a [[Vec3; 3]],
-    ray: WatertightRay,
-    hit: bool,
-}
-
-impl Visit for Any<'_> {
-    #[inline(always)]
-    fn visit(&mut self, prim: u32, t_max: &mut f32) -> bool {
-        let [a, b, c] = self.corners[prim as usize];
-        self.hit = self
-            .ray
-            .intersect(a.into(), b.into(), c.into(), *t_max)
-            .is_some();
-        self.hit
     }
 }
 
@@ -496,15 +480,7 @@ impl WideBvh {
             while mask != 0 {
                 let k = mask.trailing_zeros() as usize;
                 mask &= mask - 1;
-                let entry = (node.child[k], nears[k / 4][k % 4]);
-                let mut at = top;
-                // Farthest first, so the nearest is popped next.
-                while ORDERED && at > base && stack[at - 1].1 < entry.1 {
-                    stack[at] = stack[at - 1];
-                    at -= 1;
-                }
-                stack[at] = entry;
-                top += 1;
+                push_child::<ORDERED>(stack, base, &mut top, (node.child[k], nears[k / 4][k % 4]));
             }
         }
     }
