@@ -315,7 +315,11 @@ impl NodeRay {
         NodeRay {
             origin: [0, 1, 2].map(|a| Vec4::splat(ray.origin[a])),
             inv_dir: [0, 1, 2].map(|a| Vec4::splat(inv[a])),
-            negative: [ray.dir.x < 0.0, ray.dir.y < 0.0, ray.dir.z < 0.0],
+            // From the inverse's sign, so that a direction of -0 (whose inverse is negative)
+            // takes the largest corner as its near side, as the inverse does.
+            // From the inverse's sign, so that a direction of -0 (whose inverse is negative)
+            // takes the largest corner as its near side, as the inverse does.
+            negative: [0, 1, 2].map(|a| inv[a].is_sign_negative()),
         }
     }
 
@@ -567,6 +571,27 @@ mod tests {
         // A miss.
         let miss = Ray::new(Vec3A::new(2.0, 2.0, 5.0), Vec3A::NEG_Z);
         assert!(m.intersect(&miss, f32::INFINITY).is_none());
+    }
+
+    #[test]
+    fn directions_of_minus_zero_hit_like_plus_zero() {
+        // A direction component of -0 (as a reflection or a transform can give) has an
+        // inverse of -inf: the node test must then treat the axis as running backwards, or
+        // every box's slab comes out empty and the ray misses the mesh.
+        let (m, _) = Mesh::new(cube()).unwrap();
+        let top = Vec3A::new(0.3, 0.4, 1.0);
+        let side = Vec3A::new(1.0, 0.4, 0.3);
+        for (dir, entry) in [
+            (Vec3A::new(-0.0, -0.0, -1.0), top),
+            (Vec3A::new(-0.0, 0.0, -1.0), top),
+            (Vec3A::new(0.0, -0.0, -1.0), top),
+            (Vec3A::new(-1.0, -0.0, -0.0), side),
+        ] {
+            let ray = Ray::new(entry - dir * 5.0, dir);
+            let h = m.intersect(&ray, f32::INFINITY);
+            assert!(h.is_some_and(|h| (h.t - 5.0).abs() < 1e-5), "{dir}: {h:?}");
+            assert!(m.occluded(&ray, f32::INFINITY), "{dir}");
+        }
     }
 
     #[test]
