@@ -460,31 +460,62 @@ impl WideBvh {
         let nr = NodeRay::new(ray);
         let mut fixed = [(0u32, 0.0f32); N];
         let stack: &mut [(u32, f32)] = if N == 0 { heap } else { &mut fixed };
-        stack[0] = (0, 0.0);
-        let mut top = 1;
-        while top > 0 {
-            top -= 1;
-            let (r, near) = stack[top];
-            if near > t_max {
-                continue;
-            }
-            if r & LEAF != 0 {
-                let first = r & FIRST_MASK;
-                let count = ((r & !LEAF) >> COUNT_SHIFT) + 1;
+        let mut top = 0;
+        // The node or leaf being visited; the root first.
+        let mut current = 0u32;
+        loop {
+            if current & LEAF == 0 {
+                let node = &self.nodes[current as usize];
+                let (nears, mut mask) = nr.hits(node, t_max);
+                if mask != 0 {
+                    let k = mask.trailing_zeros() as usize;
+                    mask &= mask - 1;
+                    if mask == 0 {
+                        // One child met (the common case deep down): go straight on.
+                        current = node.child[k];
+                        continue;
+                    }
+                    let base = top;
+                    push_child::<ORDERED>(
+                        stack,
+                        base,
+                        &mut top,
+                        (node.child[k], nears[k / 4][k % 4]),
+                    );
+                    while mask != 0 {
+                        let k = mask.trailing_zeros() as usize;
+                        mask &= mask - 1;
+                        push_child::<ORDERED>(
+                            stack,
+                            base,
+                            &mut top,
+                            (node.child[k], nears[k / 4][k % 4]),
+                        );
+                    }
+                    top -= 1;
+                    current = stack[top].0;
+                    continue;
+                }
+            } else {
+                let first = current & FIRST_MASK;
+                let count = ((current & !LEAF) >> COUNT_SHIFT) + 1;
                 for prim in first..first + count {
                     if visit.visit(prim, &mut t_max) {
                         return;
                     }
                 }
-                continue;
             }
-            let node = &self.nodes[r as usize];
-            let (nears, mut mask) = nr.hits(node, t_max);
-            let base = top;
-            while mask != 0 {
-                let k = mask.trailing_zeros() as usize;
-                mask &= mask - 1;
-                push_child::<ORDERED>(stack, base, &mut top, (node.child[k], nears[k / 4][k % 4]));
+            // Next: the nearest entry left that starts before the hit found so far.
+            loop {
+                if top == 0 {
+                    return;
+                }
+                top -= 1;
+                let (r, near) = stack[top];
+                if near <= t_max {
+                    current = r;
+                    break;
+                }
             }
         }
     }
