@@ -376,12 +376,15 @@ impl Bvh {
         t_max: f32,
         blocks: impl Fn(usize) -> bool,
     ) -> bool {
-        self.first_blocker(objects, ray, t_max, blocks).is_some()
+        self.first_blocker_and_others(objects, ray, t_max, blocks)
+            .0
+            .is_some()
     }
 
-    /// [`Bvh::first_blocker`], and whether the ray met the bounds of any object that does
-    /// not block (before a blocker was found): when it met none, no such object can be hit
-    /// in `(0, t_max)` either, and a shadow ray need not look for glass.
+    /// The first object found (not necessarily the nearest) for which `blocks(i)` holds and
+    /// that the ray hits in `(0, t_max)`, and whether the ray met the bounds of any object
+    /// that does not block (before a blocker was found): when it met none, no such object can
+    /// be hit in `(0, t_max)` either, and a shadow ray need not look for glass.
     #[inline]
     pub fn first_blocker_and_others(
         &self,
@@ -404,19 +407,6 @@ impl Bvh {
             }
         });
         (found, others)
-    }
-
-    /// The first object found (not necessarily the nearest) for which `blocks(i)` holds and
-    /// that the ray hits in `(0, t_max)`.
-    #[inline]
-    pub fn first_blocker(
-        &self,
-        objects: &[Object],
-        ray: &Ray,
-        t_max: f32,
-        blocks: impl Fn(usize) -> bool,
-    ) -> Option<usize> {
-        self.first_blocker_and_others(objects, ray, t_max, blocks).0
     }
 }
 

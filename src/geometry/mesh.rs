@@ -317,8 +317,6 @@ impl NodeRay {
             inv_dir: [0, 1, 2].map(|a| Vec4::splat(inv[a])),
             // From the inverse's sign, so that a direction of -0 (whose inverse is negative)
             // takes the largest corner as its near side, as the inverse does.
-            // From the inverse's sign, so that a direction of -0 (whose inverse is negative)
-            // takes the largest corner as its near side, as the inverse does.
             negative: [0, 1, 2].map(|a| inv[a].is_sign_negative()),
         }
     }
@@ -467,21 +465,14 @@ impl WideBvh {
             if current & LEAF == 0 {
                 let node = &self.nodes[current as usize];
                 let (nears, mut mask) = nr.hits(node, t_max);
+                if mask != 0 && mask & (mask - 1) == 0 {
+                    // One child met (the common case deep down): go straight on.
+                    current = node.child[mask.trailing_zeros() as usize];
+                    continue;
+                }
                 if mask != 0 {
-                    let k = mask.trailing_zeros() as usize;
-                    mask &= mask - 1;
-                    if mask == 0 {
-                        // One child met (the common case deep down): go straight on.
-                        current = node.child[k];
-                        continue;
-                    }
+                    // Push the children met, sorted, and go on with the nearest.
                     let base = top;
-                    push_child::<ORDERED>(
-                        stack,
-                        base,
-                        &mut top,
-                        (node.child[k], nears[k / 4][k % 4]),
-                    );
                     while mask != 0 {
                         let k = mask.trailing_zeros() as usize;
                         mask &= mask - 1;

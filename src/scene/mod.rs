@@ -518,23 +518,13 @@ impl Scene {
             .any_hit(&self.objects, ray, t_max, |i| !self.transparent[i])
     }
 
-    /// An opaque object that blocks the ray in `(0, t_max)`, if any (the first found).
-    pub fn opaque_blocker(&self, ray: &Ray, t_max: f32) -> Option<usize> {
-        self.accel
-            .first_blocker(&self.objects, ray, t_max, |i| !self.transparent[i])
-    }
-
-    /// [`Scene::opaque_blocker`], and whether the ray met the bounds of a transparent object
-    /// (or an unbounded one) on the way: if not, it crosses no glass in `(0, t_max)`.
+    /// An opaque object that blocks the ray in `(0, t_max)`, if any (the first found), and
+    /// whether the ray met the bounds of a transparent object (or an unbounded one) on the
+    /// way: if not, it crosses no glass in `(0, t_max)`.
     #[inline]
     pub fn opaque_blocker_seeing_glass(&self, ray: &Ray, t_max: f32) -> (Option<usize>, bool) {
         self.accel
             .first_blocker_and_others(&self.objects, ray, t_max, |i| !self.transparent[i])
-    }
-
-    /// Whether any object is transparent (shadow rays then look further).
-    pub fn has_transparent(&self) -> bool {
-        !self.transparent_objects.is_empty()
     }
 
     /// The uv the surface's texture reads at a hit: through its mapping (spherical, planar
