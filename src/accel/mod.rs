@@ -337,6 +337,9 @@ impl Bvh {
             }
             let n = &self.nodes[r as usize];
             let (nears, mask) = br.hits4(n, t_max);
+            // As a plain array: a vector's lane picked by a variable index compiles to a jump
+            // table.
+            let nears = nears.to_array();
             // Push the children hit, farthest first, so the nearest is visited next.
             let base = top;
             for lane in 0..4 {

@@ -465,6 +465,10 @@ impl WideBvh {
             if current & LEAF == 0 {
                 let node = &self.nodes[current as usize];
                 let (nears, mut mask) = nr.hits(node, t_max);
+                // As a plain array: indexing a vector's lane by a variable compiles to a jump
+                // table, an indirect branch per child pushed.
+                let [a, b] = nears.map(|v| v.to_array());
+                let nears = [a[0], a[1], a[2], a[3], b[0], b[1], b[2], b[3]];
                 if mask != 0 && mask & (mask - 1) == 0 {
                     // One child met (the common case deep down): go straight on.
                     current = node.child[mask.trailing_zeros() as usize];
@@ -476,12 +480,7 @@ impl WideBvh {
                     while mask != 0 {
                         let k = mask.trailing_zeros() as usize;
                         mask &= mask - 1;
-                        push_child::<ORDERED>(
-                            stack,
-                            base,
-                            &mut top,
-                            (node.child[k], nears[k / 4][k % 4]),
-                        );
+                        push_child::<ORDERED>(stack, base, &mut top, (node.child[k], nears[k]));
                     }
                     top -= 1;
                     current = stack[top].0;
