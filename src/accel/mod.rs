@@ -342,9 +342,9 @@ impl Bvh {
             let nears = nears.to_array();
             // Push the children hit, farthest first, so the nearest is visited next.
             let base = top;
-            for lane in 0..4 {
-                if mask & (1 << lane) != 0 && n.child[lane] != NO_CHILD {
-                    push_child::<ORDERED>(&mut stack, base, &mut top, (n.child[lane], nears[lane]));
+            for (lane, (&child, &near)) in n.child.iter().zip(&nears).enumerate() {
+                if mask & (1 << lane) != 0 && child != NO_CHILD {
+                    push_child::<ORDERED>(&mut stack, base, &mut top, (child, near));
                 }
             }
         }
