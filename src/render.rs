@@ -3,7 +3,7 @@
 
 use crate::film::Image;
 use crate::integrator::{Integrator, RayStats};
-use crate::math::{Color, Rng, hash_seed};
+use crate::math::{Color, Ray, Rng, Vec3A, hash_seed};
 use crate::scene::{RenderSettings, Scene};
 use rayon::prelude::*;
 use std::collections::BTreeMap;
@@ -308,6 +308,9 @@ pub fn for_each_sample(s: &RenderSettings, x: u32, y: u32, mut f: impl FnMut(f32
     }
 }
 
+/// Camera rays made at once by [`render_pixel`] before they are traced.
+const CAMERA_BATCH: usize = 16;
+
 /// One pixel: its samples (see [`for_each_sample`]) averaged with the signs of their filter
 /// weights.
 pub fn render_pixel(
@@ -321,28 +324,43 @@ pub fn render_pixel(
     let s = &scene.settings;
     let (mut sum, mut weight, mut unsigned) = (Color::ZERO, 0.0f32, Color::ZERO);
     let camera = scene.camera.raster(s.width, s.height);
+    let mut trace = |batch: &[(Ray, f32)]| {
+        for (ray, sign) in batch {
+            let c = integrator.radiance(scene, ray, rays);
+            // A non-finite sample would poison the whole pixel: leave it out, and say where.
+            let c = if c.is_finite() {
+                c
+            } else {
+                bad.count += 1;
+                if bad.examples.len() < BadSamples::EXAMPLES {
+                    bad.examples.push(BadSample {
+                        x,
+                        y,
+                        object: scene.closest_hit(ray, f32::INFINITY).map(|h| h.object),
+                        nan: c.is_nan(),
+                    });
+                }
+                Color::ZERO
+            };
+            sum += c * *sign;
+            weight += sign;
+            unsigned += c;
+        }
+    };
+    // The camera rays of several samples are made before any is traced, so that their
+    // square roots and divisions overlap instead of each waiting behind the previous
+    // sample's whole tree of rays. The order of the samples is unchanged.
+    let mut batch = [(Ray::new(Vec3A::ZERO, Vec3A::Z), 0.0f32); CAMERA_BATCH];
+    let mut len = 0;
     for_each_sample(s, x, y, |px, py, sign| {
-        let ray = camera.ray(px, py);
-        let c = integrator.radiance(scene, &ray, rays);
-        // A non-finite sample would poison the whole pixel: leave it out, and say where.
-        let c = if c.is_finite() {
-            c
-        } else {
-            bad.count += 1;
-            if bad.examples.len() < BadSamples::EXAMPLES {
-                bad.examples.push(BadSample {
-                    x,
-                    y,
-                    object: scene.closest_hit(&ray, f32::INFINITY).map(|h| h.object),
-                    nan: c.is_nan(),
-                });
-            }
-            Color::ZERO
-        };
-        sum += c * sign;
-        weight += sign;
-        unsigned += c;
+        batch[len] = (camera.ray(px, py), sign);
+        len += 1;
+        if len == CAMERA_BATCH {
+            trace(&batch);
+            len = 0;
+        }
     });
+    trace(&batch[..len]);
     if weight > 0.0 {
         (sum / weight).max(Color::ZERO)
     } else {
