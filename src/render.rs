@@ -371,7 +371,45 @@ pub fn render_pixel(
 
 #[cfg(test)]
 mod tests {
-    use super::scatter_step;
+    use super::*;
+    use crate::integrator::Whitted;
+    use crate::scene::{Format, load_str};
+    use std::path::Path;
+
+    /// Camera rays are made in batches: with 25 samples (a full batch and a part), a pixel
+    /// is still the signed average of every sample, each traced on its own, in order.
+    #[test]
+    fn batched_camera_rays_give_every_sample_once() {
+        let text = "[image]\nwidth = 8\nheight = 8\nsamples = 25\nfilter = { type = \"mitchell\" }\n\
+                    [camera]\nposition = [0, 0, 5]\nlook_at = [0, 0, 0]\nfov = 30\n\
+                    [materials.m]\ncolor = [0.8, 0.3, 0.1]\nspecular = 1\nshininess = 20\n\
+                    [[lights]]\ntype = \"point\"\nposition = [2, 3, 4]\n\
+                    [[objects]]\ntype = \"sphere\"\nradius = 1\nmaterial = \"m\"\n";
+        let scene = load_str(text, Path::new("t.toml"), Path::new("."), Format::Toml).unwrap();
+        assert_eq!(scene.settings.spp, 25);
+        let camera = scene.camera.raster(8, 8);
+        for (x, y) in [(4, 4), (3, 5), (0, 0)] {
+            let (mut sum, mut weight, mut count) = (Color::ZERO, 0.0f32, 0);
+            for_each_sample(&scene.settings, x, y, |px, py, sign| {
+                let c = Whitted.radiance(&scene, &camera.ray(px, py), &mut RayStats::default());
+                sum += c * sign;
+                weight += sign;
+                count += 1;
+            });
+            assert_eq!(count, 25);
+            let mut rays = RayStats::default();
+            let got = render_pixel(
+                &scene,
+                &Whitted,
+                x,
+                y,
+                &mut rays,
+                &mut BadSamples::default(),
+            );
+            assert_eq!(rays.camera, 25, "pixel ({x}, {y})");
+            assert_eq!(got, (sum / weight).max(Color::ZERO), "pixel ({x}, {y})");
+        }
+    }
 
     #[test]
     fn scattered_order_visits_every_tile_once() {
