@@ -323,11 +323,13 @@ impl NodeRay {
 
     /// Entry distances into the eight child boxes of `node`, and a bit per child whose box
     /// the ray meets in `[0, t_max]`. Empty children have inverted boxes, which never meet.
+    /// The distances come as a plain array: a vector's lane picked by a variable index (as
+    /// the walk picks them) compiles to a jump table, an indirect branch per child pushed.
     #[inline(always)]
-    fn hits(&self, node: &WideNode, t_max: f32) -> ([Vec4; 2], u32) {
-        let mut nears = [Vec4::ZERO; 2];
+    fn hits(&self, node: &WideNode, t_max: f32) -> ([f32; 8], u32) {
+        let mut nears = [0.0; 8];
         let mut mask = 0;
-        for (half, nears) in nears.iter_mut().enumerate() {
+        for (half, nears) in nears.chunks_exact_mut(4).enumerate() {
             let mut near = Vec4::ZERO;
             let mut far = Vec4::splat(f32::INFINITY);
             for axis in 0..3 {
@@ -342,7 +344,7 @@ impl NodeRay {
             }
             let far = (far * SLACK).min(Vec4::splat(t_max));
             mask |= near.cmple(far).bitmask() << (half * 4);
-            *nears = near;
+            nears.copy_from_slice(&near.to_array());
         }
         (nears, mask)
     }
@@ -465,10 +467,6 @@ impl WideBvh {
             if current & LEAF == 0 {
                 let node = &self.nodes[current as usize];
                 let (nears, mut mask) = nr.hits(node, t_max);
-                // As a plain array: indexing a vector's lane by a variable compiles to a jump
-                // table, an indirect branch per child pushed.
-                let [a, b] = nears.map(|v| v.to_array());
-                let nears = [a[0], a[1], a[2], a[3], b[0], b[1], b[2], b[3]];
                 if mask != 0 && mask & (mask - 1) == 0 {
                     // One child met (the common case deep down): go straight on.
                     current = node.child[mask.trailing_zeros() as usize];
