@@ -190,6 +190,10 @@ pub fn render_with(
     let tiles: Vec<Option<(Vec<Color>, RayStats, BadSamples)>> = pool.install(|| {
         (0..n)
             .into_par_iter()
+            // One tile per job: rayon otherwise hands threads long runs of tiles that cannot
+            // be split once started, and near the end one core would sit idle while the other
+            // finishes its run (a quarter of a second of the seed scene).
+            .with_max_len(1)
             .map(|k| {
                 let i = tile_of(k);
                 if earlier.contains_key(&i)
