@@ -60,7 +60,7 @@ impl Texture {
     /// Bytes of decoded image data it holds (0 for procedural textures).
     pub fn bytes(&self) -> usize {
         match &self.pattern {
-            Pattern::Image(img) => img.width() as usize * img.height() as usize * 12,
+            Pattern::Image(img) => img.bytes(),
             _ => 0,
         }
     }
