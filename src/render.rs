@@ -219,39 +219,52 @@ pub fn render_with(
             })
             .collect()
     });
-    let mut image = Image::new(w, h);
     let mut rays = RayStats::default();
     let mut bad_samples = BadSamples::default();
-    let mut place = |i: u32, tile: &[Color]| {
-        let (x0, y0, x1, _) = tile_rect(i);
-        let tw = x1 - x0;
-        for (k, c) in tile.iter().enumerate() {
-            let (x, y) = (x0 + k as u32 % tw, y0 + k as u32 / tw);
-            image.pixels[(y * w + x) as usize] = *c;
-        }
-    };
-    let mut finished = 0;
+    // Each finished tile by its index: from an earlier run (if whole), or from this one.
+    let mut by_index: Vec<Option<&[Color]>> = vec![None; n as usize];
     for (&i, tile) in earlier.iter().filter(|(i, _)| **i < n) {
         let (x0, y0, x1, y1) = tile_rect(i);
         if tile.len() == ((x1 - x0) * (y1 - y0)) as usize {
-            place(i, tile);
-            finished += 1;
+            by_index[i as usize] = Some(tile);
         }
     }
     // In tile index order, so the examples are the same at any thread count.
     let mut ordered: Vec<(u32, BadSamples)> = vec![];
-    for (k, t) in tiles.into_iter().enumerate() {
+    for (k, t) in tiles.iter().enumerate() {
         let Some((tile, tile_rays, tile_bad)) = t else {
             continue;
         };
         let i = tile_of(k as u32);
-        rays += tile_rays;
+        rays += *tile_rays;
         if tile_bad.count > 0 {
-            ordered.push((i, tile_bad));
+            ordered.push((i, tile_bad.clone()));
         }
-        place(i, &tile);
-        finished += 1;
+        by_index[i as usize] = Some(tile);
     }
+    let finished = by_index.iter().filter(|t| t.is_some()).count() as u32;
+    // The tiles copied into the image a band of tile rows at a time, on every core.
+    let mut image = Image::new(w, h);
+    pool.install(|| {
+        image
+            .pixels
+            .par_chunks_mut((w * TILE) as usize)
+            .enumerate()
+            .for_each(|(ty, band)| {
+                for tx in 0..tiles_x {
+                    let i = ty as u32 * tiles_x + tx;
+                    let Some(tile) = by_index[i as usize] else {
+                        continue;
+                    };
+                    let (x0, _, x1, _) = tile_rect(i);
+                    let tw = (x1 - x0) as usize;
+                    for (row, src) in tile.chunks_exact(tw).enumerate() {
+                        let start = row * w as usize + x0 as usize;
+                        band[start..start + tw].copy_from_slice(src);
+                    }
+                }
+            });
+    });
     ordered.sort_by_key(|(i, _)| *i);
     for (_, b) in ordered {
         bad_samples.add(b);
