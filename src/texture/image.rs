@@ -186,7 +186,8 @@ impl ImageData {
         let y = uv.y * self.height as f32 - 0.5;
         // Checked after scaling: a finite uv near f32::MAX becomes infinite here, and the
         // fractions below would be NaN.
-        if !(x.is_finite() && y.is_finite()) {
+        // An image with no texels (which no file should give, but the API can) is black.
+        if !(x.is_finite() && y.is_finite()) || self.width == 0 || self.height == 0 {
             return Color::ZERO;
         }
         let (x0, y0) = (x.floor(), y.floor());
@@ -388,6 +389,23 @@ mod tests {
         // Clamped rows repeat the edge row instead.
         let c = b.sample_bilinear(centre(4.0, 5.0), true);
         assert_eq!(c, Color::new(202.0, 115.0, 158.0) / 255.0);
+    }
+
+    #[test]
+    fn an_image_without_texels_samples_black() {
+        for img in [
+            ::image::DynamicImage::new_rgb8(0, 0),
+            ::image::DynamicImage::new_rgb8(0, 4),
+            ::image::DynamicImage::new_rgb32f(3, 0),
+        ] {
+            let tex = ImageData::from_owned(img, ColorSpace::Srgb);
+            for clamp_v in [false, true] {
+                assert_eq!(
+                    tex.sample_bilinear(Vec2::new(0.3, 0.7), clamp_v),
+                    Color::ZERO
+                );
+            }
+        }
     }
 
     #[test]
