@@ -107,6 +107,9 @@ pub fn render_aovs(scene: &Scene, threads: Option<usize>) -> Result<AovBuffers, 
     let rows: Vec<Vec<Sample>> = pool.install(|| {
         (0..h)
             .into_par_iter()
+            // A row per job, as the render's tiles: otherwise a thread's long run of rows
+            // cannot be shared at the end, and the other core idles.
+            .with_max_len(1)
             .map(|y| (0..w).map(|x| sample(scene, x, y)).collect())
             .collect()
     });
