@@ -264,6 +264,8 @@ impl Mesh {
 trait Visit {
     /// Tests triangle `prim`, lowering `t_max` to a hit's distance; true stops the walk.
     fn visit(&mut self, prim: u32, t_max: &mut f32) -> bool;
+    /// Asks the cache for triangle `prim`'s data, which will be tested soon.
+    fn prefetch(&self, prim: u32);
 }
 
 /// A ray's query of a mesh's triangles: the nearest hit (`ANY` false), or any hit, the walk
@@ -275,6 +277,13 @@ struct TriangleQuery<'a, const ANY: bool> {
 }
 
 impl<const ANY: bool> Visit for TriangleQuery<'_, ANY> {
+    #[inline(always)]
+    fn prefetch(&self, prim: u32) {
+        if let Some(corners) = self.corners.get(prim as usize) {
+            crate::math::prefetch(corners);
+        }
+    }
+
     #[inline(always)]
     fn visit(&mut self, prim: u32, t_max: &mut f32) -> bool {
         let [a, b, c] = self.corners[prim as usize];
@@ -478,7 +487,14 @@ impl WideBvh {
                     while mask != 0 {
                         let k = mask.trailing_zeros() as usize;
                         mask &= mask - 1;
-                        push_child::<ORDERED>(stack, base, &mut top, (node.child[k], nears[k]));
+                        let child = node.child[k];
+                        if child & LEAF != 0 {
+                            // Its triangles are tested after the nearer children: start
+                            // fetching them now (random rays through the bunny miss the
+                            // cache there most).
+                            visit.prefetch(child & FIRST_MASK);
+                        }
+                        push_child::<ORDERED>(stack, base, &mut top, (child, nears[k]));
                     }
                     top -= 1;
                     current = stack[top].0;

@@ -73,6 +73,27 @@ pub fn fresnel_dielectric(cos_i: f32, eta: f32) -> f32 {
     0.5 * (r_s * r_s + r_p * r_p)
 }
 
+/// Asks the CPU to bring the cache line holding `value` into the cache, without waiting for
+/// it: a hint, with no effect on what the program computes. A no-op off x86-64.
+#[inline(always)]
+pub fn prefetch<T>(value: &T) {
+    #[cfg(target_arch = "x86_64")]
+    // SAFETY: `_mm_prefetch` is unsafe only because it is declared with
+    // `#[target_feature(enable = "sse")]`, and SSE is part of every x86-64 CPU (the
+    // target's baseline, so this build always has it). The instruction itself (PREFETCHT0)
+    // reads nothing into a register and writes nothing: it cannot fault, even on an invalid
+    // address, and here the address is that of a live reference. So the call has no
+    // precondition left to uphold. (No safe way exists on stable Rust; on the bunny it makes
+    // random rays 8 to 14 % faster: see the commit that added it.)
+    #[allow(unsafe_code)]
+    unsafe {
+        use std::arch::x86_64::{_MM_HINT_T0, _mm_prefetch};
+        _mm_prefetch::<_MM_HINT_T0>((value as *const T).cast());
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    let _ = value;
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
