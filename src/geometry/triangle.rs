@@ -19,21 +19,21 @@ impl WatertightRay {
     /// Prepares `ray` (any non-zero direction).
     #[inline]
     pub(crate) fn new(ray: &Ray) -> Self {
-        let d = ray.dir;
-        let a = d.abs();
-        let kz = if a.x >= a.y && a.x >= a.z {
+        // The axis of the largest component, and the other two in cyclic order, swapped
+        // (to keep the winding) when the ray runs toward -z. Written without branches: for
+        // random directions each one would be mispredicted half the time.
+        let d = ray.dir.to_array();
+        let a = ray.dir.abs();
+        let x_largest = (a.x >= a.y) & (a.x >= a.z);
+        let kz = if x_largest {
             0
-        } else if a.y >= a.z {
-            1
         } else {
-            2
+            2 - (a.y >= a.z) as usize
         };
-        let mut kx = (kz + 1) % 3;
-        let mut ky = (kx + 1) % 3;
-        // Keep the winding: swap the other two axes when the ray runs toward -z.
-        if d[kz] < 0.0 {
-            std::mem::swap(&mut kx, &mut ky);
-        }
+        let backwards = (d[kz] < 0.0) as usize;
+        const WRAP: [usize; 5] = [0, 1, 2, 0, 1];
+        let kx = WRAP[kz + 1 + backwards];
+        let ky = WRAP[kz + 2 - backwards];
         let (sx, sy, sz) = (d[kx] / d[kz], d[ky] / d[kz], 1.0 / d[kz]);
         let mut cols = [Vec3A::ZERO; 3];
         cols[kx] = Vec3A::X;
