@@ -60,7 +60,7 @@ impl WatertightRay {
         let mut u = c.x * b.y - c.y * b.x;
         let mut v = a.x * c.y - a.y * c.x;
         let mut w = b.x * a.y - b.y * a.x;
-        if u == 0.0 || v == 0.0 || w == 0.0 {
+        if (u == 0.0) | (v == 0.0) | (w == 0.0) {
             // On (or within rounding of) an edge: decide in double precision, where these
             // products of floats are exact, so the two triangles of an edge agree.
             let f =
@@ -69,7 +69,11 @@ impl WatertightRay {
             v = f(a.x, c.y, a.y, c.x);
             w = f(b.x, a.y, b.y, a.x);
         }
-        if (u < 0.0 || v < 0.0 || w < 0.0) && (u > 0.0 || v > 0.0 || w > 0.0) {
+        // Signs mixed: the ray passes outside an edge. One branch for the six tests (a
+        // random ray misses most triangles it is tested against, at any of the three edges).
+        let negative = (u < 0.0) | (v < 0.0) | (w < 0.0);
+        let positive = (u > 0.0) | (v > 0.0) | (w > 0.0);
+        if negative & positive {
             return None;
         }
         let det = u + v + w;
