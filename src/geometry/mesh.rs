@@ -6,6 +6,7 @@ use super::triangle::WatertightRay;
 use super::{ShapeHit, Surface};
 use crate::accel::push_child;
 use crate::math::{Aabb, Ray, Vec2, Vec3, Vec3A};
+#[cfg(not(all(target_arch = "x86_64", target_feature = "avx")))]
 use glam::Vec4;
 use obvhs::cwbvh::node::CwBvhNode;
 use std::time::{Duration, Instant};
@@ -307,10 +308,19 @@ impl<const ANY: bool> Visit for TriangleQuery<'_, ANY> {
 /// millimetres loses nearby hits) and culls flat boxes (a floor, a quad) by rounding; this one
 /// starts at 0 and gives the far side a relative slack, as snell's object BVH does.
 struct NodeRay {
-    origin: [Vec4; 3],
-    inv_dir: [Vec4; 3],
-    negative: [bool; 3],
+    origin: [Lanes; 3],
+    inv_dir: [Lanes; 3],
+    /// Per axis, the side of the boxes the ray enters by: 1 (the largest coordinate) where
+    /// it runs toward minus, else 0.
+    near_side: [usize; 3],
 }
+
+/// Eight floats, one per child of a node: a 256-bit vector where the build has AVX, two
+/// 128-bit ones elsewhere.
+#[cfg(all(target_arch = "x86_64", target_feature = "avx"))]
+type Lanes = safe_arch::m256;
+#[cfg(not(all(target_arch = "x86_64", target_feature = "avx")))]
+type Lanes = [Vec4; 2];
 
 impl NodeRay {
     #[inline(always)]
@@ -322,11 +332,11 @@ impl NodeRay {
         let capped = Vec3A::splat(CAP).copysign(inv);
         let inv = Vec3A::select(inv.abs().cmple(Vec3A::splat(CAP)), inv, capped);
         NodeRay {
-            origin: [0, 1, 2].map(|a| Vec4::splat(ray.origin[a])),
-            inv_dir: [0, 1, 2].map(|a| Vec4::splat(inv[a])),
+            origin: [0, 1, 2].map(|a| splat(ray.origin[a])),
+            inv_dir: [0, 1, 2].map(|a| splat(inv[a])),
             // From the inverse's sign, so that a direction of -0 (whose inverse is negative)
             // takes the largest corner as its near side, as the inverse does.
-            negative: [0, 1, 2].map(|a| inv[a].is_sign_negative()),
+            near_side: [0, 1, 2].map(|a| inv[a].is_sign_negative() as usize),
         }
     }
 
@@ -334,6 +344,28 @@ impl NodeRay {
     /// the ray meets in `[0, t_max]`. Empty children have inverted boxes, which never meet.
     /// The distances come as a plain array: a vector's lane picked by a variable index (as
     /// the walk picks them) compiles to a jump table, an indirect branch per child pushed.
+    #[cfg(all(target_arch = "x86_64", target_feature = "avx"))]
+    #[inline(always)]
+    fn hits(&self, node: &WideNode, t_max: f32) -> ([f32; 8], u32) {
+        use safe_arch::*;
+        let mut near = set_splat_m256(0.0);
+        let mut far = set_splat_m256(f32::INFINITY);
+        for axis in 0..3 {
+            let side = self.near_side[axis] & 1;
+            let planes = &node.planes[axis];
+            let (o, inv) = (self.origin[axis], self.inv_dir[axis]);
+            let n = m256::from_array(planes[side]);
+            let f = m256::from_array(planes[side ^ 1]);
+            near = max_m256(near, mul_m256(sub_m256(n, o), inv));
+            far = min_m256(far, mul_m256(sub_m256(f, o), inv));
+        }
+        let far = min_m256(mul_m256(far, set_splat_m256(SLACK)), set_splat_m256(t_max));
+        let met = cmp_op_mask_m256::<{ cmp_op!(LessEqualOrdered) }>(near, far);
+        (near.to_array(), move_mask_m256(met) as u32)
+    }
+
+    /// [`NodeRay::hits`] four children at a time.
+    #[cfg(not(all(target_arch = "x86_64", target_feature = "avx")))]
     #[inline(always)]
     fn hits(&self, node: &WideNode, t_max: f32) -> ([f32; 8], u32) {
         let mut nears = [0.0; 8];
@@ -342,14 +374,13 @@ impl NodeRay {
             let mut near = Vec4::ZERO;
             let mut far = Vec4::splat(f32::INFINITY);
             for axis in 0..3 {
-                let (n, f) = if self.negative[axis] {
-                    (&node.hi[axis], &node.lo[axis])
-                } else {
-                    (&node.lo[axis], &node.hi[axis])
-                };
-                let (o, inv) = (self.origin[axis], self.inv_dir[axis]);
-                near = near.max((n[half] - o) * inv);
-                far = far.min((f[half] - o) * inv);
+                let side = self.near_side[axis] & 1;
+                let planes = &node.planes[axis];
+                let (o, inv) = (self.origin[axis][half], self.inv_dir[axis][half]);
+                let n = Vec4::from_slice(&planes[side][4 * half..]);
+                let f = Vec4::from_slice(&planes[side ^ 1][4 * half..]);
+                near = near.max((n - o) * inv);
+                far = far.min((f - o) * inv);
             }
             let far = (far * SLACK).min(Vec4::splat(t_max));
             mask |= near.cmple(far).bitmask() << (half * 4);
@@ -357,6 +388,15 @@ impl NodeRay {
         }
         (nears, mask)
     }
+}
+
+/// `x` in every lane.
+#[inline(always)]
+fn splat(x: f32) -> Lanes {
+    #[cfg(all(target_arch = "x86_64", target_feature = "avx"))]
+    return safe_arch::set_splat_m256(x);
+    #[cfg(not(all(target_arch = "x86_64", target_feature = "avx")))]
+    return [Vec4::splat(x); 2];
 }
 
 /// Marks a child reference as a leaf: `LEAF | (count - 1) << COUNT_SHIFT | first triangle`.
@@ -370,20 +410,19 @@ const FIRST_MASK: u32 = (1 << COUNT_SHIFT) - 1;
 /// floats and its children's references decoded once, at build time (decoding eight
 /// quantised boxes per node visit cost more than reading the larger node).
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[repr(C, align(32))]
 struct WideNode {
-    /// Smallest corner of each child's box, per axis, four children to a vector (+inf for
-    /// empty children). Whole vectors, so that a node test loads each with one instruction.
-    lo: [[Vec4; 2]; 3],
-    /// Largest corner of each child's box, per axis (-inf for empty children).
-    hi: [[Vec4; 2]; 3],
+    /// Per axis, the children's smallest (side 0; +inf for empty children) and largest
+    /// (side 1; -inf) box coordinates. A ray picks each axis's near side by an index made
+    /// once per ray, which becomes part of the load's address.
+    planes: [[[f32; 8]; 2]; 3],
     /// Per child: an inner node's index, or a leaf reference (see [`LEAF`]).
     child: [u32; 8],
 }
 
 impl WideNode {
     fn from_cw(n: &CwBvhNode) -> Self {
-        let mut lo = [[Vec4::INFINITY; 2]; 3];
-        let mut hi = [[Vec4::NEG_INFINITY; 2]; 3];
+        let mut planes = [[[f32::INFINITY; 8], [f32::NEG_INFINITY; 8]]; 3];
         let mut child = [0; 8];
         for (i, c) in child.iter_mut().enumerate() {
             let meta = n.child_meta[i];
@@ -391,9 +430,9 @@ impl WideNode {
                 continue;
             }
             let b = n.child_aabb(i);
-            for axis in 0..3 {
-                lo[axis][i / 4][i % 4] = b.min[axis];
-                hi[axis][i / 4][i % 4] = b.max[axis];
+            for (axis, [lo, hi]) in planes.iter_mut().enumerate() {
+                lo[i] = b.min[axis];
+                hi[i] = b.max[axis];
             }
             // Ylitie et al.'s encoding, as obvhs stores it: inner children have meta
             // 0b001_11xxx (their slot, 24 to 31, in the low five bits); leaves hold their
@@ -406,7 +445,7 @@ impl WideNode {
                 LEAF | (count.clamp(1, 3) - 1) << COUNT_SHIFT | first
             };
         }
-        WideNode { lo, hi, child }
+        WideNode { planes, child }
     }
 }
 
@@ -431,7 +470,7 @@ impl WideBvh {
             depth = depth.max(d);
             let n = &nodes[i as usize];
             for (k, &c) in n.child.iter().enumerate() {
-                if c & LEAF == 0 && n.lo[0][k / 4][k % 4] <= n.hi[0][k / 4][k % 4] {
+                if c & LEAF == 0 && n.planes[0][0][k] <= n.planes[0][1][k] {
                     todo.push((c, d + 1));
                 }
             }
