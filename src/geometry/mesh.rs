@@ -2,7 +2,7 @@
 //! by PLOC), watertight triangle tests, and per-vertex normals and uvs. A mesh is shared
 //! (`Arc`) by every object that places it, so a thousand instances cost one copy.
 
-use super::triangle::WatertightRay;
+use super::triangle::RowRay;
 use super::{ShapeHit, Surface};
 use crate::accel::push_child;
 use crate::math::{Aabb, Ray, Vec2, Vec3, Vec3A};
@@ -33,8 +33,10 @@ pub struct MeshInput {
 /// A triangle mesh arranged for ray queries.
 #[derive(Debug, PartialEq)]
 pub struct Mesh {
-    /// Corner positions of each triangle, in BVH order (gathered, so a test reads one place).
-    corners: Vec<[Vec3; 3]>,
+    /// Corner positions of each triangle, in BVH order (gathered, so a test reads one place),
+    /// as rows: the x of its corners a, b, c, then their y, then their z; one float of
+    /// padding at the end (see [`RowRay`]).
+    rows: Vec<f32>,
     /// Vertex indices of each triangle, in BVH order (for normals and uvs).
     faces: Vec<[u32; 3]>,
     normals: Vec<Vec3>,
@@ -132,10 +134,14 @@ impl Mesh {
             .map(|&p| kept[p as usize])
             .collect();
         let faces: Vec<[u32; 3]> = order.iter().map(|&i| triangles[i]).collect();
-        let corners = faces
-            .iter()
-            .map(|f| f.map(|k| positions[k as usize]))
-            .collect();
+        let mut rows = Vec::with_capacity(9 * faces.len() + 1);
+        for f in &faces {
+            let [a, b, c] = f.map(|k| positions[k as usize]);
+            for axis in 0..3 {
+                rows.extend([a[axis], b[axis], c[axis]]);
+            }
+        }
+        rows.push(0.0);
         let slots = if triangle_slots.is_empty() {
             vec![]
         } else {
@@ -143,7 +149,7 @@ impl Mesh {
         };
         Ok((
             Mesh {
-                corners,
+                rows,
                 faces,
                 normals,
                 uvs,
@@ -158,7 +164,7 @@ impl Mesh {
 
     /// Number of triangles (after dropping degenerate ones).
     pub fn triangle_count(&self) -> usize {
-        self.corners.len()
+        self.faces.len()
     }
 
     /// Whether the mesh has per-vertex normals (smooth shading).
@@ -178,7 +184,7 @@ impl Mesh {
 
     /// Bytes taken by the triangles, normals, uvs and slots.
     pub fn geometry_bytes(&self) -> usize {
-        self.corners.len() * 36
+        self.rows.len() * 4
             + self.faces.len() * 12
             + self.normals.len() * 12
             + self.uvs.len() * 8
@@ -201,8 +207,8 @@ impl Mesh {
     #[inline]
     pub fn intersect(&self, ray: &Ray, t_max: f32) -> Option<ShapeHit> {
         let mut closest = TriangleQuery::<false> {
-            corners: &self.corners,
-            ray: WatertightRay::new(ray),
+            rows: &self.rows,
+            ray: RowRay::new(ray),
             hit: None,
         };
         self.bvh.walk::<true>(ray, t_max, &mut closest);
@@ -213,8 +219,8 @@ impl Mesh {
     #[inline]
     pub fn occluded(&self, ray: &Ray, t_max: f32) -> bool {
         let mut any = TriangleQuery::<true> {
-            corners: &self.corners,
-            ray: WatertightRay::new(ray),
+            rows: &self.rows,
+            ray: RowRay::new(ray),
             hit: None,
         };
         self.bvh.walk::<false>(ray, t_max, &mut any);
@@ -226,7 +232,7 @@ impl Mesh {
     /// keep normals consistent more reliably than winding), and the interpolated uv (the
     /// barycentrics when the mesh has none).
     pub fn surface(&self, hit: &ShapeHit) -> Surface {
-        let [a, b, c] = self.corners[hit.prim as usize].map(Vec3A::from);
+        let [a, b, c] = self.corners(hit.prim);
         let (u, v) = (hit.bary.x, hit.bary.y);
         let w = 1.0 - u - v;
         let point = a * w + b * u + c * v;
@@ -243,6 +249,12 @@ impl Mesh {
             self.uvs[f[0] as usize] * w + self.uvs[f[1] as usize] * u + self.uvs[f[2] as usize] * v
         };
         Surface { point, normal, uv }
+    }
+
+    /// The corners of triangle `prim` (in BVH order).
+    fn corners(&self, prim: u32) -> [Vec3A; 3] {
+        let r = &self.rows[9 * prim as usize..][..9];
+        [0, 1, 2].map(|k| Vec3A::new(r[k], r[3 + k], r[6 + k]))
     }
 
     /// The vertex normals interpolated at a hit (unit, object space), when the mesh has them.
@@ -272,23 +284,22 @@ trait Visit {
 /// A ray's query of a mesh's triangles: the nearest hit (`ANY` false), or any hit, the walk
 /// stopping at the first (`ANY` true).
 struct TriangleQuery<'a, const ANY: bool> {
-    corners: &'a [[Vec3; 3]],
-    ray: WatertightRay,
+    rows: &'a [f32],
+    ray: RowRay,
     hit: Option<ShapeHit>,
 }
 
 impl<const ANY: bool> Visit for TriangleQuery<'_, ANY> {
     #[inline(always)]
     fn prefetch(&self, prim: u32) {
-        if let Some(corners) = self.corners.get(prim as usize) {
-            crate::math::prefetch(corners);
+        if let Some(first) = self.rows.get(9 * prim as usize) {
+            crate::math::prefetch(first);
         }
     }
 
     #[inline(always)]
     fn visit(&mut self, prim: u32, t_max: &mut f32) -> bool {
-        let [a, b, c] = self.corners[prim as usize];
-        if let Some((t, u, v)) = self.ray.intersect(a.into(), b.into(), c.into(), *t_max) {
+        if let Some((t, u, v)) = self.ray.intersect(&self.rows[9 * prim as usize..], *t_max) {
             *t_max = t;
             self.hit = Some(ShapeHit {
                 t,
@@ -717,10 +728,10 @@ mod tests {
             let origin = target - dir * (1.0 + 3.0 * rng.next_f32());
             let ray = Ray::new(origin, dir);
             if m.intersect(&ray, f32::INFINITY).is_none() {
-                let wt = WatertightRay::new(&ray);
-                let brute = m.corners.iter().any(|[a, b, c]| {
-                    wt.intersect((*a).into(), (*b).into(), (*c).into(), f32::INFINITY)
-                        .is_some()
+                let wt = super::super::triangle::WatertightRay::new(&ray);
+                let brute = (0..m.triangle_count() as u32).any(|p| {
+                    let [a, b, c] = m.corners(p);
+                    wt.intersect(a, b, c, f32::INFINITY).is_some()
                 });
                 eprintln!("miss k={k} target={target} brute={brute}");
                 misses += 1;

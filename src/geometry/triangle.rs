@@ -1,6 +1,6 @@
 use super::{ShapeHit, Surface};
 use crate::math::{Aabb, Ray, Vec2, Vec3A};
-use glam::Mat3A;
+use glam::{Mat3A, Vec4, Vec4Swizzles};
 
 /// A ray prepared for the watertight ray-triangle test of Woop, Benthin and Wald (JCGT
 /// 2013): translated to the origin and sheared so that it runs along +z. Two triangles that
@@ -15,26 +15,110 @@ pub(crate) struct WatertightRay {
     shear: Mat3A,
 }
 
+/// The axes and shear of the watertight test for a ray: `([kx, ky, kz], [sx, sy, sz])`, the
+/// ray's largest component's axis last.
+#[inline(always)]
+fn shear_of(ray: &Ray) -> ([usize; 3], [f32; 3]) {
+    // The axis of the largest component, and the other two in cyclic order, swapped (to
+    // keep the winding) when the ray runs toward -z. Written without branches: for random
+    // directions each one would be mispredicted half the time.
+    let d = ray.dir.to_array();
+    let a = ray.dir.abs();
+    let x_largest = (a.x >= a.y) & (a.x >= a.z);
+    // 0 where x is largest, else 1 (y) or 2 (z): arithmetic, as the compiler turned an `if`
+    // here back into branches once this was shared by two callers.
+    let kz = (!x_largest) as usize * (2 - (a.y >= a.z) as usize);
+    let backwards = (d[kz] < 0.0) as usize;
+    const WRAP: [usize; 5] = [0, 1, 2, 0, 1];
+    let kx = WRAP[kz + 1 + backwards];
+    let ky = WRAP[kz + 2 - backwards];
+    ([kx, ky, kz], [d[kx] / d[kz], d[ky] / d[kz], 1.0 / d[kz]])
+}
+
+/// The watertight test for triangles stored as rows, nine floats each: the x of the
+/// corners a, b, c, then their y, then their z (and at least one float more after the
+/// last triangle, since a row is read as four). The three corners go through the shear
+/// together, and the three edge functions come out of one vector product; the values are
+/// those of [`WatertightRay::intersect`], operation for operation.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct RowRay {
+    /// Where the rows that become the sheared x, y and z start: `3 * kx`, `3 * ky`, `3 * kz`.
+    rows: [usize; 3],
+    /// The origin's coordinates along `kx`, `ky`, `kz`, each in every lane.
+    origin: [Vec4; 3],
+    /// `sx`, `sy`, `sz`, each in every lane.
+    shear: [Vec4; 3],
+}
+
+impl RowRay {
+    /// Prepares `ray` (any non-zero direction).
+    #[inline]
+    pub(crate) fn new(ray: &Ray) -> Self {
+        let (k, s) = shear_of(ray);
+        // An array, not the vector: indexing a glam vector by a variable is a `match`, three
+        // branches that random directions mispredict.
+        let o = ray.origin.to_array();
+        RowRay {
+            rows: k.map(|k| 3 * k),
+            origin: k.map(|k| Vec4::splat(o[k])),
+            shear: s.map(Vec4::splat),
+        }
+    }
+
+    /// Hit of the triangle whose rows start `tri` with `0 < t < t_max`: `(t, weight of b,
+    /// weight of c)`.
+    #[inline(always)]
+    pub(crate) fn intersect(&self, tri: &[f32], t_max: f32) -> Option<(f32, f32, f32)> {
+        let row = |k: usize| Vec4::from_slice(&tri[self.rows[k]..]) - self.origin[k];
+        // (a, b, c, -) of each sheared coordinate; the fourth lane is the next row's first
+        // float, never read below.
+        let z = row(2);
+        let x = row(0) - self.shear[0] * z;
+        let y = row(1) - self.shear[1] * z;
+        let z = self.shear[2] * z;
+        // (u, v, w) = (c.x b.y - c.y b.x, a.x c.y - a.y c.x, b.x a.y - b.y a.x).
+        let mut e = x.zxyw() * y.yzxw() - y.zxyw() * x.yzxw();
+        if e.cmpeq(Vec4::ZERO).bitmask() & 0b111 != 0 {
+            // On (or within rounding of) an edge: decide in double precision, as the
+            // scalar test does.
+            let f =
+                |p: f32, q: f32, r: f32, s: f32| (p as f64 * q as f64 - r as f64 * s as f64) as f32;
+            e = Vec4::new(
+                f(x.z, y.y, y.z, x.y),
+                f(x.x, y.z, y.x, x.z),
+                f(x.y, y.x, y.y, x.x),
+                0.0,
+            );
+        }
+        let negative = e.cmplt(Vec4::ZERO).bitmask() & 0b111 != 0;
+        let positive = e.cmpgt(Vec4::ZERO).bitmask() & 0b111 != 0;
+        if negative & positive {
+            return None;
+        }
+        let det = e.x + e.y + e.z;
+        if det == 0.0 || det.is_nan() {
+            return None;
+        }
+        let p = e * z;
+        let t_scaled = p.x + p.y + p.z;
+        if det > 0.0 {
+            if t_scaled <= 0.0 || t_scaled >= t_max * det {
+                return None;
+            }
+        } else if t_scaled >= 0.0 || t_scaled <= t_max * det {
+            return None;
+        }
+        let inv = 1.0 / det;
+        let t = t_scaled * inv;
+        (t > 0.0 && t < t_max).then_some((t, e.y * inv, e.z * inv))
+    }
+}
+
 impl WatertightRay {
     /// Prepares `ray` (any non-zero direction).
     #[inline]
     pub(crate) fn new(ray: &Ray) -> Self {
-        // The axis of the largest component, and the other two in cyclic order, swapped
-        // (to keep the winding) when the ray runs toward -z. Written without branches: for
-        // random directions each one would be mispredicted half the time.
-        let d = ray.dir.to_array();
-        let a = ray.dir.abs();
-        let x_largest = (a.x >= a.y) & (a.x >= a.z);
-        let kz = if x_largest {
-            0
-        } else {
-            2 - (a.y >= a.z) as usize
-        };
-        let backwards = (d[kz] < 0.0) as usize;
-        const WRAP: [usize; 5] = [0, 1, 2, 0, 1];
-        let kx = WRAP[kz + 1 + backwards];
-        let ky = WRAP[kz + 2 - backwards];
-        let (sx, sy, sz) = (d[kx] / d[kz], d[ky] / d[kz], 1.0 / d[kz]);
+        let ([kx, ky, kz], [sx, sy, sz]) = shear_of(ray);
         let mut cols = [Vec3A::ZERO; 3];
         cols[kx] = Vec3A::X;
         cols[ky] = Vec3A::Y;
