@@ -208,7 +208,8 @@ impl Mesh {
     pub fn intersect(&self, ray: &Ray, t_max: f32) -> Option<ShapeHit> {
         let mut closest = TriangleQuery::<false> {
             rows: &self.rows,
-            ray: RowRay::new(ray),
+            source: ray,
+            ray: None,
             hit: None,
         };
         self.bvh.walk::<true>(ray, t_max, &mut closest);
@@ -220,7 +221,8 @@ impl Mesh {
     pub fn occluded(&self, ray: &Ray, t_max: f32) -> bool {
         let mut any = TriangleQuery::<true> {
             rows: &self.rows,
-            ray: RowRay::new(ray),
+            source: ray,
+            ray: None,
             hit: None,
         };
         self.bvh.walk::<false>(ray, t_max, &mut any);
@@ -285,7 +287,10 @@ trait Visit {
 /// stopping at the first (`ANY` true).
 struct TriangleQuery<'a, const ANY: bool> {
     rows: &'a [f32],
-    ray: RowRay,
+    source: &'a Ray,
+    /// The ray prepared for triangle tests, made at the first one: a ray that meets no
+    /// leaf (one that misses the mesh, for a start) never pays for it.
+    ray: Option<RowRay>,
     hit: Option<ShapeHit>,
 }
 
@@ -299,7 +304,9 @@ impl<const ANY: bool> Visit for TriangleQuery<'_, ANY> {
 
     #[inline(always)]
     fn visit(&mut self, prim: u32, t_max: &mut f32) -> bool {
-        if let Some((t, u, v)) = self.ray.intersect(&self.rows[9 * prim as usize..], *t_max) {
+        let source = self.source;
+        let ray = self.ray.get_or_insert_with(|| RowRay::new(source));
+        if let Some((t, u, v)) = ray.intersect(&self.rows[9 * prim as usize..], *t_max) {
             *t_max = t;
             self.hit = Some(ShapeHit {
                 t,
