@@ -306,7 +306,11 @@ impl<const ANY: bool> Visit for TriangleQuery<'_, ANY> {
     fn visit(&mut self, prim: u32, t_max: &mut f32) -> bool {
         let source = self.source;
         let ray = self.ray.get_or_insert_with(|| RowRay::new(source));
-        if let Some((t, u, v)) = ray.intersect(&self.rows[9 * prim as usize..], *t_max) {
+        let start = 9 * prim as usize;
+        let Ok(tri) = <&[f32; 10]>::try_from(&self.rows[start..start + 10]) else {
+            return false;
+        };
+        if let Some((t, u, v)) = ray.intersect(tri, *t_max) {
             *t_max = t;
             self.hit = Some(ShapeHit {
                 t,
@@ -535,14 +539,16 @@ impl WideBvh {
                 let (nears, mut mask) = nr.hits(node, t_max);
                 if mask != 0 && mask & (mask - 1) == 0 {
                     // One child met (the common case deep down): go straight on.
-                    current = node.child[mask.trailing_zeros() as usize];
+                    // (`& 7`: the compiler cannot tell that an eight-bit mask's lowest set
+                    // bit is below 8, and would check the index.)
+                    current = node.child[mask.trailing_zeros() as usize & 7];
                     continue;
                 }
                 if mask != 0 {
                     // Push the children met, sorted, and go on with the nearest.
                     let base = top;
                     while mask != 0 {
-                        let k = mask.trailing_zeros() as usize;
+                        let k = mask.trailing_zeros() as usize & 7;
                         mask &= mask - 1;
                         let child = node.child[k];
                         if child & LEAF != 0 {
