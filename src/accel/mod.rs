@@ -61,7 +61,8 @@ impl Node4 {
 }
 
 /// Scenes with at most this many bounded objects get no tree: their boxes are tested all at
-/// once, two four-wide tests, and the objects met visited nearest first. Small scenes (the
+/// once, in two four-wide tests (one when four objects or fewer fill the first, a plain box
+/// test for a lone object), and the objects met visited nearest first. Small scenes (the
 /// seed scene has eight) are what learners write most, and a tree's stack and indirections
 /// cost them more than the two extra box tests.
 const FLAT: usize = 8;
@@ -259,8 +260,9 @@ impl Bvh {
         }
     }
 
-    /// [`Bvh::traverse`]'s bounded objects for a scene without a tree: all boxes at once,
-    /// then the objects met, nearest box first when `ORDERED`.
+    /// [`Bvh::traverse`]'s bounded objects for a scene without a tree: all boxes at once
+    /// (only the used group's, or the lone object's box), then the objects met, nearest box
+    /// first when `ORDERED`.
     #[inline(always)]
     fn traverse_flat<const ORDERED: bool>(
         &self,

@@ -622,6 +622,125 @@ mod tests {
     use super::*;
     use crate::math::Rng;
 
+    /// The node test (the AVX one or the portable one, whichever this build has) against
+    /// the plain slab test, child by child: random boxes (some empty, some flat, some
+    /// behind the ray) and random rays, with directions that have +0 and -0 components.
+    #[test]
+    fn node_test_agrees_with_the_slab_test() {
+        let mut rng = Rng::new(5);
+        let mut r = |lo: f32, hi: f32| lo + (hi - lo) * rng.next_f32();
+        for case in 0..2000 {
+            let mut planes = [[[f32::INFINITY; 8], [f32::NEG_INFINITY; 8]]; 3];
+            let mut used = [false; 8];
+            for (child, used) in used.iter_mut().enumerate() {
+                if r(0.0, 1.0) < 0.2 {
+                    continue; // empty: an inverted box
+                }
+                *used = true;
+                for (axis, [lo, hi]) in planes.iter_mut().enumerate() {
+                    let a = r(-2.0, 2.0);
+                    // Every fifth box is flat along x.
+                    let b = if axis == 0 && child % 5 == 0 {
+                        a
+                    } else {
+                        r(-2.0, 2.0)
+                    };
+                    (lo[child], hi[child]) = (a.min(b), a.max(b));
+                }
+            }
+            let node = WideNode {
+                planes,
+                child: [0; 8],
+            };
+            let mut d = Vec3A::new(r(-1.0, 1.0), r(-1.0, 1.0), r(-1.0, 1.0));
+            match case % 4 {
+                1 => d.x = 0.0,
+                2 => d.y = -0.0,
+                3 => (d.x, d.z) = (-0.0, 0.0),
+                _ => {}
+            }
+            if d == Vec3A::ZERO {
+                continue;
+            }
+            let ray = Ray::new(Vec3A::new(r(-3.0, 3.0), r(-3.0, 3.0), r(-3.0, 3.0)), d);
+            let t_max = if case % 3 == 0 {
+                f32::INFINITY
+            } else {
+                r(0.0, 4.0)
+            };
+            let (nears, mask) = NodeRay::new(&ray).hits(&node, t_max);
+            // The same formulas, one child and one axis at a time.
+            let inv = (Vec3A::ONE / ray.dir).to_array().map(|i| {
+                if i.abs() <= 1e20 {
+                    i
+                } else {
+                    1e20f32.copysign(i)
+                }
+            });
+            for child in 0..8 {
+                let (mut near, mut far) = (0.0f32, f32::INFINITY);
+                for axis in 0..3 {
+                    let [lo, hi] = planes[axis].map(|p| p[child]);
+                    let (n, f) = if inv[axis].is_sign_negative() {
+                        (hi, lo)
+                    } else {
+                        (lo, hi)
+                    };
+                    near = near.max((n - ray.origin[axis]) * inv[axis]);
+                    far = far.min((f - ray.origin[axis]) * inv[axis]);
+                }
+                let met = near <= (far * SLACK).min(t_max);
+                assert_eq!(mask >> child & 1 == 1, met, "case {case}, child {child}");
+                assert!(used[child] || !met, "case {case}: empty child {child} met");
+                if met {
+                    assert_eq!(nears[child], near, "case {case}, child {child}");
+                }
+            }
+        }
+    }
+
+    /// The mesh's triangle test over rows gives what the scalar watertight test gives, for
+    /// rays in every direction (so every choice of axes and winding) and rays aimed at
+    /// corners and edges, where the test falls back to double precision.
+    #[test]
+    fn row_test_agrees_with_the_scalar_watertight_test() {
+        use super::super::triangle::WatertightRay;
+        let mut rng = Rng::new(11);
+        let mut r = |lo: f32, hi: f32| lo + (hi - lo) * rng.next_f32();
+        for case in 0..5000 {
+            let corners: [Vec3A; 3] =
+                std::array::from_fn(|_| Vec3A::new(r(-1.0, 1.0), r(-1.0, 1.0), r(-1.0, 1.0)));
+            let mut tri = [0.0f32; 10];
+            for axis in 0..3 {
+                for k in 0..3 {
+                    tri[3 * axis + k] = corners[k][axis];
+                }
+            }
+            let origin = Vec3A::new(r(-3.0, 3.0), r(-3.0, 3.0), r(-3.0, 3.0));
+            // Aimed at a corner, a point on an edge, or anywhere near the triangle.
+            let (a, b) = (case % 3, (case + 1) % 3);
+            let target = match case % 4 {
+                0 => corners[a],
+                1 => corners[a].lerp(corners[b], r(0.0, 1.0)),
+                _ => Vec3A::new(r(-1.0, 1.0), r(-1.0, 1.0), r(-1.0, 1.0)),
+            };
+            if target == origin {
+                continue;
+            }
+            let ray = Ray::new(origin, target - origin);
+            let t_max = if case % 5 == 0 {
+                r(0.0, 2.0)
+            } else {
+                f32::INFINITY
+            };
+            let scalar =
+                WatertightRay::new(&ray).intersect(corners[0], corners[1], corners[2], t_max);
+            let rows = RowRay::new(&ray).intersect(&tri, t_max);
+            // `==` on floats, so a zero weight may differ in sign only.
+            assert_eq!(rows, scalar, "case {case}");
+        }
+    }
+
     /// A closed unit cube from 12 triangles, outward winding.
     fn cube() -> MeshInput {
         let positions: Vec<Vec3> = (0..8)
