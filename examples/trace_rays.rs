@@ -54,7 +54,7 @@ fn run() -> Result<(), String> {
         .map_err(|e| e.to_string())?;
     let scene = mesh_scene(&files[0])?;
     let s = &scene.stats;
-    println!(
+    if !say(format_args!(
         "mesh {}: {} triangles; load {:.1} ms, BVH build {:.1} ms, BVH {:.1} bytes/triangle; {} threads",
         files[0].display(),
         s.unique_triangles,
@@ -62,11 +62,15 @@ fn run() -> Result<(), String> {
         s.mesh_bvh_time.as_secs_f64() * 1e3,
         s.bvh_bytes as f64 / s.unique_triangles.max(1) as f64,
         pool.current_num_threads()
-    );
-    println!(
+    ))? {
+        return Ok(());
+    }
+    if !say(format_args!(
         "{:<12} {:>10} {:>10} {:>16} {:>10}",
         "rays", "count", "hits", "t-sum", "Mrays/s"
-    );
+    ))? {
+        return Ok(());
+    }
     for f in &files[1..] {
         let rays = read_rays(f)?;
         let mut best = f64::INFINITY;
@@ -77,16 +81,29 @@ fn run() -> Result<(), String> {
             best = best.min(start.elapsed().as_secs_f64());
         }
         let name = f.file_stem().map_or("?".into(), |s| s.to_string_lossy());
-        println!(
+        if !say(format_args!(
             "{:<12} {:>10} {:>10} {:>16.6} {:>10.2}",
             name,
             rays.len(),
             summary.0,
             summary.1,
             rays.len() as f64 / best / 1e6
-        );
+        ))? {
+            return Ok(());
+        }
     }
     Ok(())
+}
+
+/// Prints a line; `Ok(false)` when the reader has gone (`trace_rays ... | head -1`), so the
+/// run stops quietly where `println!` would panic.
+fn say(line: std::fmt::Arguments) -> Result<bool, String> {
+    use std::io::Write;
+    match writeln!(std::io::stdout(), "{line}") {
+        Ok(()) => Ok(true),
+        Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => Ok(false),
+        Err(e) => Err(format!("standard output: {e}")),
+    }
 }
 
 /// A scene whose only object is the mesh, untransformed.
