@@ -2,7 +2,7 @@
 //! by PLOC), watertight triangle tests, and per-vertex normals and uvs. A mesh is shared
 //! (`Arc`) by every object that places it, so a thousand instances cost one copy.
 
-use super::triangle::RowRay;
+use super::triangle::{RowRay, rows_of};
 use super::{ShapeHit, Surface};
 use crate::accel::push_child;
 use crate::math::{Aabb, Ray, Vec2, Vec3, Vec3A};
@@ -136,10 +136,7 @@ impl Mesh {
         let faces: Vec<[u32; 3]> = order.iter().map(|&i| triangles[i]).collect();
         let mut rows = Vec::with_capacity(9 * faces.len() + 1);
         for f in &faces {
-            let [a, b, c] = f.map(|k| positions[k as usize]);
-            for axis in 0..3 {
-                rows.extend([a[axis], b[axis], c[axis]]);
-            }
+            rows.extend(rows_of(f.map(|k| positions[k as usize].into())));
         }
         rows.push(0.0);
         let slots = if triangle_slots.is_empty() {
@@ -306,10 +303,11 @@ impl<const ANY: bool> Visit for TriangleQuery<'_, ANY> {
     fn visit(&mut self, prim: u32, t_max: &mut f32) -> bool {
         let source = self.source;
         let ray = self.ray.get_or_insert_with(|| RowRay::new(source));
-        let start = 9 * prim as usize;
-        let Ok(tri) = <&[f32; 10]>::try_from(&self.rows[start..start + 10]) else {
-            return false;
-        };
+        // Ten floats: the nine of the triangle and the one a row reads past them (the
+        // padding after the last).
+        let tri = self.rows[9 * prim as usize..]
+            .first_chunk::<10>()
+            .expect("a triangle's rows are followed by a float");
         if let Some((t, u, v)) = ray.intersect(tri, *t_max) {
             *t_max = t;
             self.hit = Some(ShapeHit {
@@ -711,11 +709,7 @@ mod tests {
             let corners: [Vec3A; 3] =
                 std::array::from_fn(|_| Vec3A::new(r(-1.0, 1.0), r(-1.0, 1.0), r(-1.0, 1.0)));
             let mut tri = [0.0f32; 10];
-            for axis in 0..3 {
-                for k in 0..3 {
-                    tri[3 * axis + k] = corners[k][axis];
-                }
-            }
+            tri[..9].copy_from_slice(&rows_of(corners));
             let origin = Vec3A::new(r(-3.0, 3.0), r(-3.0, 3.0), r(-3.0, 3.0));
             // Aimed at a corner, a point on an edge, or anywhere near the triangle.
             let (a, b) = (case % 3, (case + 1) % 3);

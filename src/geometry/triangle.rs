@@ -83,12 +83,10 @@ impl RowRay {
         if e.cmpeq(Vec4::ZERO).bitmask() & 0b111 != 0 {
             // On (or within rounding of) an edge: decide in double precision, as the
             // scalar test does.
-            let f =
-                |p: f32, q: f32, r: f32, s: f32| (p as f64 * q as f64 - r as f64 * s as f64) as f32;
             e = Vec4::new(
-                f(x.z, y.y, y.z, x.y),
-                f(x.x, y.z, y.x, x.z),
-                f(x.y, y.x, y.y, x.x),
+                exact_edge(x.z, y.y, y.z, x.y),
+                exact_edge(x.x, y.z, y.x, x.z),
+                exact_edge(x.y, y.x, y.y, x.x),
                 0.0,
             );
         }
@@ -98,21 +96,8 @@ impl RowRay {
             return None;
         }
         let det = e.x + e.y + e.z;
-        if det == 0.0 || det.is_nan() {
-            return None;
-        }
         let p = e * z;
-        let t_scaled = p.x + p.y + p.z;
-        if det > 0.0 {
-            if t_scaled <= 0.0 || t_scaled >= t_max * det {
-                return None;
-            }
-        } else if t_scaled >= 0.0 || t_scaled <= t_max * det {
-            return None;
-        }
-        let inv = 1.0 / det;
-        let t = t_scaled * inv;
-        (t > 0.0 && t < t_max).then_some((t, e.y * inv, e.z * inv))
+        finish(det, p.x + p.y + p.z, e.y, e.z, t_max)
     }
 }
 
@@ -149,11 +134,9 @@ impl WatertightRay {
         if (u == 0.0) | (v == 0.0) | (w == 0.0) {
             // On (or within rounding of) an edge: decide in double precision, where these
             // products of floats are exact, so the two triangles of an edge agree.
-            let f =
-                |p: f32, q: f32, r: f32, s: f32| (p as f64 * q as f64 - r as f64 * s as f64) as f32;
-            u = f(c.x, b.y, c.y, b.x);
-            v = f(a.x, c.y, a.y, c.x);
-            w = f(b.x, a.y, b.y, a.x);
+            u = exact_edge(c.x, b.y, c.y, b.x);
+            v = exact_edge(a.x, c.y, a.y, c.x);
+            w = exact_edge(b.x, a.y, b.y, a.x);
         }
         // Signs mixed: the ray passes outside an edge. One branch for the six tests (a
         // random ray misses most triangles it is tested against, at any of the three edges).
@@ -162,23 +145,42 @@ impl WatertightRay {
         if negative & positive {
             return None;
         }
-        let det = u + v + w;
-        if det == 0.0 || det.is_nan() {
-            return None;
-        }
-        let t_scaled = u * a.z + v * b.z + w * c.z;
-        // Compare before dividing: t = t_scaled / det must lie in (0, t_max).
-        if det > 0.0 {
-            if t_scaled <= 0.0 || t_scaled >= t_max * det {
-                return None;
-            }
-        } else if t_scaled >= 0.0 || t_scaled <= t_max * det {
-            return None;
-        }
-        let inv = 1.0 / det;
-        let t = t_scaled * inv;
-        (t > 0.0 && t < t_max).then_some((t, v * inv, w * inv))
+        finish(u + v + w, u * a.z + v * b.z + w * c.z, v, w, t_max)
     }
+}
+
+/// An edge function `p q - r s` in double precision, where the products of floats are
+/// exact, so the two triangles of an edge agree on a ray within rounding of it.
+#[inline(always)]
+fn exact_edge(p: f32, q: f32, r: f32, s: f32) -> f32 {
+    (p as f64 * q as f64 - r as f64 * s as f64) as f32
+}
+
+/// The end of both watertight tests, once the edge functions `u, v, w` agree in sign:
+/// from `det = u + v + w` and `t_scaled = u za + v zb + w zc`, the hit `(t, weight of b,
+/// weight of c)` with `0 < t < t_max`, if any.
+#[inline(always)]
+fn finish(det: f32, t_scaled: f32, v: f32, w: f32, t_max: f32) -> Option<(f32, f32, f32)> {
+    if det == 0.0 || det.is_nan() {
+        return None;
+    }
+    // Compare before dividing: t = t_scaled / det must lie in (0, t_max).
+    if det > 0.0 {
+        if t_scaled <= 0.0 || t_scaled >= t_max * det {
+            return None;
+        }
+    } else if t_scaled >= 0.0 || t_scaled <= t_max * det {
+        return None;
+    }
+    let inv = 1.0 / det;
+    let t = t_scaled * inv;
+    (t > 0.0 && t < t_max).then_some((t, v * inv, w * inv))
+}
+
+/// The nine floats of a triangle as [`RowRay`] reads them: the x of corners `a`, `b`, `c`,
+/// then their y, then their z.
+pub(crate) fn rows_of(corners: [Vec3A; 3]) -> [f32; 9] {
+    std::array::from_fn(|i| corners[i % 3][i / 3])
 }
 
 /// A triangle with corners `a`, `b`, `c`; its front side is `(b - a) x (c - a)`
