@@ -3,6 +3,7 @@
 //! planes) that every ray tests. Meshes and instancing will add levels below the objects.
 
 use crate::geometry::ShapeHit;
+use crate::geometry::mesh::{NodeRay, WideNode};
 use crate::math::{Aabb, Ray, Vec3A};
 use crate::scene::Object;
 use glam::Vec4;
@@ -61,19 +62,19 @@ impl Node4 {
 }
 
 /// Scenes with at most this many bounded objects get no tree: their boxes are tested all at
-/// once, in two four-wide tests (one when four objects or fewer fill the first, a plain box
-/// test for a lone object), and the objects met visited nearest first. Small scenes (the
+/// once, as the eight children of a mesh BVH node are (one 256-bit step where the build has
+/// AVX; a plain box test for a lone object), and the objects met visited nearest first. Small scenes (the
 /// seed scene has eight) are what learners write most, and a tree's stack and indirections
 /// cost them more than the two extra box tests.
 const FLAT: usize = 8;
 
-/// The boxes of a small scene, four to a [`Node4`], lanes naming object indices.
+/// The boxes of a small scene, as one eight-wide node whose children name object indices.
 #[derive(Clone, Copy, Debug)]
 struct Flat {
-    groups: [Node4; 2],
+    node: WideNode,
     /// The first object's box (the only one, when `used` is 1).
     first: Aabb,
-    /// A bit per lane that holds an object.
+    /// A bit per child slot that holds an object.
     used: u32,
 }
 
@@ -157,12 +158,12 @@ impl Bvh {
         }
         if !items.is_empty() && items.len() <= FLAT {
             let mut flat = Flat {
-                groups: [Node4::EMPTY; 2],
+                node: WideNode::EMPTY,
                 first: items[0].1,
                 used: 0,
             };
             for (k, (i, b)) in items.iter().enumerate() {
-                flat.groups[k / 4].set_lane(k % 4, b, *i);
+                flat.node.set_child(k, b, *i);
                 flat.used |= 1 << k;
             }
             bvh.flat = Some(flat);
@@ -261,8 +262,7 @@ impl Bvh {
     }
 
     /// [`Bvh::traverse`]'s bounded objects for a scene without a tree: all boxes at once
-    /// (only the used group's, or the lone object's box), then the objects met, nearest box
-    /// first when `ORDERED`.
+    /// (or the lone object's box), then the objects met, nearest box first when `ORDERED`.
     #[inline(always)]
     fn traverse_flat<const ORDERED: bool>(
         &self,
@@ -271,27 +271,17 @@ impl Bvh {
         mut t_max: f32,
         mut visit: impl FnMut(usize, &mut f32) -> Result<(), ()>,
     ) {
-        let br = BoxRay::new(ray);
         if flat.used == 1 {
             // One bounded object (a model on an unbounded floor): one box, not a group of
-            // four. (Skipping the box altogether cost rays that miss a mesh a quarter more
+            // eight. (Skipping the box altogether cost rays that miss a mesh a quarter more
             // time, spent preparing the mesh walk.)
-            if br.hits(&flat.first, t_max) {
-                let _ = visit(flat.groups[0].child[0] as usize, &mut t_max);
+            if BoxRay::new(ray).hits(&flat.first, t_max) {
+                let _ = visit(flat.node.child[0] as usize, &mut t_max);
             }
             return;
         }
-        let (n0, m0) = br.hits4(&flat.groups[0], t_max);
-        // Scenes of up to four bounded objects (a model on a floor) leave the second group
-        // empty: not testing it saves every ray a quarter of its work there.
-        let (n1, m1) = if flat.used > 0xf {
-            br.hits4(&flat.groups[1], t_max)
-        } else {
-            (Vec4::ZERO, 0)
-        };
-        let (n0, n1) = (n0.to_array(), n1.to_array());
-        let nears: [f32; 8] = std::array::from_fn(|k| if k < 4 { n0[k] } else { n1[k - 4] });
-        let mut mask = (m0 | m1 << 4) & flat.used;
+        let (nears, mask) = NodeRay::new(ray).hits(&flat.node, t_max);
+        let mut mask = mask & flat.used;
         while mask != 0 {
             let k = if ORDERED {
                 // The nearest box left (a handful at most: a linear search beats sorting).
@@ -314,7 +304,7 @@ impl Bvh {
                 mask.trailing_zeros() as usize
             };
             mask &= !(1 << k);
-            if visit(flat.groups[k / 4].child[k % 4] as usize, &mut t_max).is_err() {
+            if visit(flat.node.child[k] as usize, &mut t_max).is_err() {
                 return;
             }
         }

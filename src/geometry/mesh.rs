@@ -327,7 +327,7 @@ impl<const ANY: bool> Visit for TriangleQuery<'_, ANY> {
 /// obvhs's own node test clips every box at a fixed distance of 1e-4 (so a scene in
 /// millimetres loses nearby hits) and culls flat boxes (a floor, a quad) by rounding; this one
 /// starts at 0 and gives the far side a relative slack, as snell's object BVH does.
-struct NodeRay {
+pub(crate) struct NodeRay {
     origin: [Lanes; 3],
     inv_dir: [Lanes; 3],
     /// Per axis, the side of the boxes the ray enters by: 1 (the largest coordinate) where
@@ -344,7 +344,7 @@ type Lanes = [Vec4; 2];
 
 impl NodeRay {
     #[inline(always)]
-    fn new(ray: &Ray) -> Self {
+    pub(crate) fn new(ray: &Ray) -> Self {
         // Capped so that nothing in the node test overflows to infinity (and then to NaN when
         // multiplied by a zero) for coordinates up to the 1e15 scene files allow.
         const CAP: f32 = 1e20;
@@ -366,7 +366,7 @@ impl NodeRay {
     /// the walk picks them) compiles to a jump table, an indirect branch per child pushed.
     #[cfg(all(target_arch = "x86_64", target_feature = "avx"))]
     #[inline(always)]
-    fn hits(&self, node: &WideNode, t_max: f32) -> ([f32; 8], u32) {
+    pub(crate) fn hits(&self, node: &WideNode, t_max: f32) -> ([f32; 8], u32) {
         use safe_arch::*;
         let mut near = set_splat_m256(0.0);
         let mut far = set_splat_m256(f32::INFINITY);
@@ -387,7 +387,7 @@ impl NodeRay {
     /// [`NodeRay::hits`] four children at a time.
     #[cfg(not(all(target_arch = "x86_64", target_feature = "avx")))]
     #[inline(always)]
-    fn hits(&self, node: &WideNode, t_max: f32) -> ([f32; 8], u32) {
+    pub(crate) fn hits(&self, node: &WideNode, t_max: f32) -> ([f32; 8], u32) {
         let mut nears = [0.0; 8];
         let mut mask = 0;
         for (half, nears) in nears.chunks_exact_mut(4).enumerate() {
@@ -428,19 +428,35 @@ const FIRST_MASK: u32 = (1 << COUNT_SHIFT) - 1;
 
 /// A node of the eight-wide BVH: obvhs's compressed node with its child boxes decoded to
 /// floats and its children's references decoded once, at build time (decoding eight
-/// quantised boxes per node visit cost more than reading the larger node).
+/// quantised boxes per node visit cost more than reading the larger node). The object BVH's
+/// flat layout of small scenes uses it too, its children naming objects.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[repr(C, align(32))]
-struct WideNode {
+pub(crate) struct WideNode {
     /// Per axis, the children's smallest (side 0; +inf for empty children) and largest
     /// (side 1; -inf) box coordinates. A ray picks each axis's near side by an index made
     /// once per ray, which becomes part of the load's address.
     planes: [[[f32; 8]; 2]; 3],
     /// Per child: an inner node's index, or a leaf reference (see [`LEAF`]).
-    child: [u32; 8],
+    pub(crate) child: [u32; 8],
 }
 
 impl WideNode {
+    /// No children: every box inverted (never met).
+    pub(crate) const EMPTY: WideNode = WideNode {
+        planes: [[[f32::INFINITY; 8], [f32::NEG_INFINITY; 8]]; 3],
+        child: [0; 8],
+    };
+
+    /// Puts `child`, with bounds `b`, in slot `i`.
+    pub(crate) fn set_child(&mut self, i: usize, b: &Aabb, child: u32) {
+        for (axis, [lo, hi]) in self.planes.iter_mut().enumerate() {
+            lo[i] = b.min[axis];
+            hi[i] = b.max[axis];
+        }
+        self.child[i] = child;
+    }
+
     fn from_cw(n: &CwBvhNode) -> Self {
         let mut planes = [[[f32::INFINITY; 8], [f32::NEG_INFINITY; 8]]; 3];
         let mut child = [0; 8];
