@@ -94,6 +94,7 @@ impl Filter {
     #[inline]
     pub fn sample(&self, u: f32) -> (f32, f32) {
         // `max` and `min` (unlike `clamp`) take NaN to 0, so `f` is a number in [0, 256].
+        #[expect(clippy::manual_clamp, reason = "clamp keeps NaN; this must not")]
         let f = u.max(0.0).min(1.0) * (INVERSE - 1) as f32;
         // Its whole part without a float-to-integer conversion, which Rust makes saturating
         // (a dozen instructions on x86, twice a sample): adding 2^23 to a whole number below
