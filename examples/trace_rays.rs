@@ -136,11 +136,13 @@ fn read_rays(path: &Path) -> Result<Vec<Ray>, String> {
             bytes.len()
         ));
     }
+    // Six floats a ray, in an array: no allocation per ray (a `Vec` each cost 130
+    // instructions a ray, which inflated instruction counts taken over the whole program).
     let f = |b: &[u8]| f32::from_le_bytes([b[0], b[1], b[2], b[3]]);
     Ok(bytes
         .chunks_exact(24)
         .map(|r| {
-            let v: Vec<f32> = r.chunks_exact(4).map(f).collect();
+            let v: [f32; 6] = std::array::from_fn(|k| f(&r[4 * k..]));
             Ray::new(Vec3A::new(v[0], v[1], v[2]), Vec3A::new(v[3], v[4], v[5]))
         })
         .collect())
