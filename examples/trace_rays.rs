@@ -136,7 +136,7 @@ fn read_rays(path: &Path) -> Result<Vec<Ray>, String> {
             bytes.len()
         ));
     }
-    // Six floats a ray, in an array: no allocation per ray (a `Vec` each cost 130
+    // Six floats a ray, in an array: no allocation per ray (a `Vec` each cost 144
     // instructions a ray, which inflated instruction counts taken over the whole program).
     let f = |b: &[u8]| f32::from_le_bytes([b[0], b[1], b[2], b[3]]);
     Ok(bytes

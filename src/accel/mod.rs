@@ -63,9 +63,9 @@ impl Node4 {
 
 /// Scenes with at most this many bounded objects get no tree: their boxes are tested all at
 /// once, as the eight children of a mesh BVH node are (one 256-bit step where the build has
-/// AVX; a plain box test for a lone object), and the objects met visited nearest first. Small scenes (the
-/// seed scene has eight) are what learners write most, and a tree's stack and indirections
-/// cost them more than the two extra box tests.
+/// AVX; a plain box test for a lone object), and the objects met visited nearest first.
+/// Small scenes (the seed scene has eight) are what learners write most, and a tree's stack
+/// and indirections cost them more than testing every box.
 const FLAT: usize = 8;
 
 /// The boxes of a small scene, as one eight-wide node whose children name object indices.

@@ -458,30 +458,30 @@ impl WideNode {
     }
 
     fn from_cw(n: &CwBvhNode) -> Self {
-        let mut planes = [[[f32::INFINITY; 8], [f32::NEG_INFINITY; 8]]; 3];
-        let mut child = [0; 8];
-        for (i, c) in child.iter_mut().enumerate() {
+        let mut node = WideNode::EMPTY;
+        for i in 0..8 {
             let meta = n.child_meta[i];
             if meta == 0 {
                 continue;
             }
             let b = n.child_aabb(i);
-            for (axis, [lo, hi]) in planes.iter_mut().enumerate() {
-                lo[i] = b.min[axis];
-                hi[i] = b.max[axis];
-            }
             // Ylitie et al.'s encoding, as obvhs stores it: inner children have meta
             // 0b001_11xxx (their slot, 24 to 31, in the low five bits); leaves hold their
             // triangle count in unary in the top three bits and their first triangle's
             // offset in the low five.
-            *c = if meta & 0b11000 == 0b11000 {
+            let child = if meta & 0b11000 == 0b11000 {
                 n.child_node_index(i)
             } else {
                 let (first, count) = n.child_primitives(i);
                 LEAF | (count.clamp(1, 3) - 1) << COUNT_SHIFT | first
             };
+            let bounds = Aabb {
+                min: b.min,
+                max: b.max,
+            };
+            node.set_child(i, &bounds, child);
         }
-        WideNode { planes, child }
+        node
     }
 }
 
