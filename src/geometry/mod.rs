@@ -92,6 +92,48 @@ impl Shape {
         }
     }
 
+    /// [`Shape::intersect`] as the object walk calls it, inlined there: a mesh through
+    /// [`Shape::intersect`], every other shape through [`Shape::intersect_analytic`].
+    ///
+    /// [`Shape::intersect`] has the mesh walk inlined into it, and with it the walk's
+    /// prologue: five registers saved and a 1.9 KB stack frame aligned to 32 bytes, on
+    /// every call. Every sphere of the seed scene paid it (3 % of its instructions). Marking
+    /// the mesh's own `intersect` not to be inlined instead made the walk compile to 50 more
+    /// instructions a ray through the bunny; this leaves the walk's code as it was.
+    #[inline(always)]
+    pub(crate) fn intersect_walk(&self, ray: &Ray, t_max: f32) -> Option<ShapeHit> {
+        match self {
+            Shape::Mesh(_) => self.intersect(ray, t_max),
+            _ => self.intersect_analytic(ray, t_max),
+        }
+    }
+
+    /// [`Shape::occluded`] as the object walk calls it (see [`Shape::intersect_walk`]).
+    #[inline(always)]
+    pub(crate) fn occluded_walk(&self, ray: &Ray, t_max: f32) -> bool {
+        match self {
+            Shape::Mesh(_) => self.occluded(ray, t_max),
+            _ => self.intersect_analytic(ray, t_max).is_some(),
+        }
+    }
+
+    /// [`Shape::intersect`] of every shape but a mesh (`None` for a mesh): a jump to the
+    /// shape's test, with no frame of its own to set up.
+    #[inline(never)]
+    fn intersect_analytic(&self, ray: &Ray, t_max: f32) -> Option<ShapeHit> {
+        match self {
+            Shape::Sphere(s) => s.intersect(ray, t_max),
+            Shape::Plane(s) => s.intersect(ray, t_max),
+            Shape::Rect(s) => s.intersect(ray, t_max),
+            Shape::Cuboid(s) => s.intersect(ray, t_max),
+            Shape::Cylinder(s) => s.intersect(ray, t_max),
+            Shape::Cone(s) => s.intersect(ray, t_max),
+            Shape::Disk(s) => s.intersect(ray, t_max),
+            Shape::Triangle(s) => s.intersect(ray, t_max),
+            Shape::Mesh(_) => None,
+        }
+    }
+
     /// Whether anything is hit with `0 < t < t_max` (meshes stop at the first triangle).
     #[inline]
     pub fn occluded(&self, ray: &Ray, t_max: f32) -> bool {

@@ -110,7 +110,10 @@ impl Whitted {
         } else {
             scene.closest_hit(ray, f32::INFINITY)
         };
-        let Some(hit) = found else {
+        // Borrowed, not moved out: the move copied the hit in 32-byte loads from the
+        // narrower stores `closest_hit` had just made, which a processor cannot forward, and
+        // every ray waited for those stores to reach the cache.
+        let Some(hit) = &found else {
             let c = match (seg.medium, scene.fog) {
                 (Some(sigma), _) if sigma != Color::ZERO => {
                     if R::ACTIVE {
@@ -134,7 +137,7 @@ impl Whitted {
             rec.end_ray(c);
             return c;
         };
-        let c = self.shade(scene, ray, &hit, seg, rays, rec);
+        let c = self.shade(scene, ray, hit, seg, rays, rec);
         // Only absorption and fog need the distance (a square root on every ray).
         let distance = || (hit.point - seg.from).length();
         let c = match (seg.medium, scene.fog) {

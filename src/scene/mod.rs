@@ -345,8 +345,8 @@ impl Object {
     #[inline]
     pub fn intersect(&self, ray: &Ray, t_max: f32) -> Option<ShapeHit> {
         match &self.transform {
-            None => self.shape.intersect(ray, t_max),
-            Some(t) => self.shape.intersect(&t.ray_to_object(ray), t_max),
+            None => self.shape.intersect_walk(ray, t_max),
+            Some(t) => self.shape.intersect_walk(&t.ray_to_object(ray), t_max),
         }
     }
 
@@ -354,8 +354,8 @@ impl Object {
     #[inline]
     pub fn occluded(&self, ray: &Ray, t_max: f32) -> bool {
         match &self.transform {
-            None => self.shape.occluded(ray, t_max),
-            Some(t) => self.shape.occluded(&t.ray_to_object(ray), t_max),
+            None => self.shape.occluded_walk(ray, t_max),
+            Some(t) => self.shape.occluded_walk(&t.ray_to_object(ray), t_max),
         }
     }
 
