@@ -341,9 +341,11 @@ pub fn render_pixel(
     let s = &scene.settings;
     let (mut sum, mut weight, mut unsigned) = (Color::ZERO, 0.0f32, Color::ZERO);
     let camera = scene.camera.raster(s.width, s.height);
-    let mut trace = |batch: &[(Ray, f32)]| {
-        for (ray, sign) in batch {
-            let c = integrator.radiance(scene, ray, rays);
+    let mut colors = [Color::ZERO; CAMERA_BATCH];
+    let mut trace = |batch: &[Ray], signs: &[f32]| {
+        let colors = &mut colors[..batch.len()];
+        integrator.radiance_batch(scene, batch, colors, rays);
+        for ((ray, sign), &c) in batch.iter().zip(signs).zip(colors.iter()) {
             // A non-finite sample would poison the whole pixel: leave it out, and say where.
             let c = if c.is_finite() {
                 c
@@ -366,18 +368,21 @@ pub fn render_pixel(
     };
     // The camera rays of several samples are made before any is traced, so that their
     // square roots and divisions overlap instead of each waiting behind the previous
-    // sample's whole tree of rays. The order of the samples is unchanged.
-    let mut batch = [(Ray::new(Vec3A::ZERO, Vec3A::Z), 0.0f32); CAMERA_BATCH];
+    // sample's whole tree of rays, and handed to the integrator together, which finds their
+    // first hits as packets. The order of the samples is unchanged.
+    let mut batch = [Ray::new(Vec3A::ZERO, Vec3A::Z); CAMERA_BATCH];
+    let mut signs = [0.0f32; CAMERA_BATCH];
     let mut len = 0;
     for_each_sample(s, x, y, |px, py, sign| {
-        batch[len] = (camera.ray(px, py), sign);
+        batch[len] = camera.ray(px, py);
+        signs[len] = sign;
         len += 1;
         if len == CAMERA_BATCH {
-            trace(&batch);
+            trace(&batch, &signs);
             len = 0;
         }
     });
-    trace(&batch[..len]);
+    trace(&batch[..len], &signs[..len]);
     if weight > 0.0 {
         (sum / weight).max(Color::ZERO)
     } else {

@@ -265,6 +265,55 @@ pub(crate) mod test_util {
         assert!((a - b).abs().max_element() <= tol, "{a} != {b}");
     }
 
+    /// Checks a shape's packet test (`lanes`) against its test of one ray (`one`), lane by
+    /// lane and bit for bit, on 4,000 packets of rays from `origin()` toward `target()`
+    /// (points on or near the shape, so that many rays hit it and some graze it): with
+    /// unit, long, short, axis-aligned and zero directions, and limits that cut some hits
+    /// off. Returns how many rays hit.
+    pub fn assert_lanes_match(
+        one: impl Fn(&Ray, f32) -> Option<ShapeHit>,
+        lanes: impl Fn(&crate::math::RayLanes, &[f32; crate::math::LANES]) -> [f32; 8],
+        mut origin: impl FnMut(&mut crate::math::Rng) -> Vec3A,
+        mut target: impl FnMut(&mut crate::math::Rng) -> Vec3A,
+    ) -> usize {
+        use crate::math::{LANES, RayLanes, Rng};
+        let mut rng = Rng::new(5);
+        let mut hits = 0;
+        for _ in 0..4000 {
+            let mut rays = [Ray::new(Vec3A::ZERO, Vec3A::X); LANES];
+            let mut t_max = [f32::INFINITY; LANES];
+            for (l, ray) in rays.iter_mut().enumerate() {
+                let o = origin(&mut rng);
+                let to = target(&mut rng) - o;
+                let mut d = match l {
+                    0 | 1 => to,
+                    2 => to * 1e-3,
+                    3 => to * 1e3,
+                    _ => to.normalize(),
+                };
+                if l == 4 {
+                    d.x = 0.0;
+                } else if l == 5 && rng.next_f32() < 0.05 {
+                    d = Vec3A::ZERO;
+                }
+                *ray = Ray::new(o, d);
+                let u = rng.next_f32();
+                if u < 0.3 {
+                    // Somewhere around the target: before the hit, or just past it.
+                    t_max[l] = to.length() / d.length().max(1e-30) * (0.5 + u * 2.0);
+                }
+            }
+            let got = lanes(&RayLanes::new(&rays), &t_max);
+            for l in 0..LANES {
+                let want = one(&rays[l], t_max[l]).map(|h| h.t.to_bits());
+                let got = (got[l] != f32::INFINITY).then(|| got[l].to_bits());
+                assert_eq!(got, want, "{:?}, t_max {}", rays[l], t_max[l]);
+                hits += want.is_some() as usize;
+            }
+        }
+        hits
+    }
+
     /// Hits `shape` with `ray` and returns (t, surface at the hit).
     pub fn hit(shape: &Shape, origin: [f32; 3], dir: [f32; 3]) -> Option<(f32, Surface)> {
         let ray = Ray::new(Vec3A::from_array(origin), Vec3A::from_array(dir));

@@ -15,6 +15,15 @@ pub trait Integrator: Sync {
     /// Linear RGB arriving along `ray` (a camera ray, unit direction). Every ray traced for
     /// it is counted in `rays`.
     fn radiance(&self, scene: &Scene, ray: &Ray, rays: &mut RayStats) -> Color;
+
+    /// [`Integrator::radiance`] of each ray of `batch`, into `out` (as long as `batch`): the
+    /// camera rays of one pixel, which an integrator may trace together (the same colours,
+    /// to the bit, as one ray at a time).
+    fn radiance_batch(&self, scene: &Scene, batch: &[Ray], out: &mut [Color], rays: &mut RayStats) {
+        for (ray, o) in batch.iter().zip(out) {
+            *o = self.radiance(scene, ray, rays);
+        }
+    }
 }
 
 /// Rays traced, by kind (for `snell render --stats`).

@@ -28,6 +28,29 @@ impl Integrator for Whitted {
     fn radiance(&self, scene: &Scene, ray: &Ray, rays: &mut RayStats) -> Color {
         self.trace(scene, ray, 1, None, rays)
     }
+
+    /// The first hits of the whole batch as packets ([`Scene::closest_hits`]), then each
+    /// ray's shading and the rest of its tree, in order.
+    fn radiance_batch(&self, scene: &Scene, batch: &[Ray], out: &mut [Color], rays: &mut RayStats) {
+        const N: usize = 16;
+        for (batch, out) in batch.chunks(N).zip(out.chunks_mut(N)) {
+            let mut found: [Option<Hit>; N] = [None; N];
+            let found = &mut found[..batch.len()];
+            scene.closest_hits(batch, found);
+            for ((ray, f), o) in batch.iter().zip(found.iter()).zip(out.iter_mut()) {
+                let seg = Segment {
+                    kind: RayKind::Camera,
+                    from: ray.origin,
+                    depth: 1,
+                    medium: None,
+                    weight: Color::ONE,
+                };
+                rays.camera += 1;
+                rays.deepest = rays.deepest.max(1);
+                *o = self.trace_found(scene, ray, f, &seg, rays, &mut NoRecord);
+            }
+        }
+    }
 }
 
 /// Where a ray is going and what it carries, for one call of the recursion.
@@ -110,10 +133,23 @@ impl Whitted {
         } else {
             scene.closest_hit(ray, f32::INFINITY)
         };
-        // Borrowed, not moved out: the move copied the hit in 32-byte loads from the
+        self.trace_found(scene, ray, &found, seg, rays, rec)
+    }
+
+    /// The rest of [`Whitted::trace_from`], once the ray's closest hit is `found`.
+    fn trace_found<R: Recorder>(
+        &self,
+        scene: &Scene,
+        ray: &Ray,
+        found: &Option<Hit>,
+        seg: &Segment,
+        rays: &mut RayStats,
+        rec: &mut R,
+    ) -> Color {
+        // `found` is borrowed: moving the hit out of it copied it in 32-byte loads from the
         // narrower stores `closest_hit` had just made, which a processor cannot forward, and
         // every ray waited for those stores to reach the cache.
-        let Some(hit) = &found else {
+        let Some(hit) = found else {
             let c = match (seg.medium, scene.fog) {
                 (Some(sigma), _) if sigma != Color::ZERO => {
                     if R::ACTIVE {

@@ -39,6 +39,43 @@ impl Ray {
     }
 }
 
+/// How many rays a packet holds (see [`RayLanes`]): one 256-bit vector of `f32`.
+pub const LANES: usize = 8;
+
+/// A packet of rays stored coordinate by coordinate, so that one vector instruction works
+/// on the same coordinate of every ray. Shapes test a packet at once where its rays are
+/// likely to meet the same objects: the camera rays of one pixel.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RayLanes {
+    /// The origins' x, y and z.
+    pub origin: [[f32; LANES]; 3],
+    /// The directions' x, y and z.
+    pub dir: [[f32; LANES]; 3],
+}
+
+impl RayLanes {
+    /// The packet of `rays` (one to [`LANES`] of them); lanes past the last ray repeat it,
+    /// so that every lane holds a ray and works out something meaningful.
+    pub fn new(rays: &[Ray]) -> Self {
+        assert!(
+            !rays.is_empty() && rays.len() <= LANES,
+            "a packet holds 1 to {LANES} rays"
+        );
+        let mut p = RayLanes {
+            origin: [[0.0; LANES]; 3],
+            dir: [[0.0; LANES]; 3],
+        };
+        for l in 0..LANES {
+            let r = &rays[l.min(rays.len() - 1)];
+            for a in 0..3 {
+                p.origin[a][l] = r.origin[a];
+                p.dir[a][l] = r.dir[a];
+            }
+        }
+        p
+    }
+}
+
 /// Mirror reflection of direction `d` about the normal `n` (unit).
 pub fn reflect(d: Vec3A, n: Vec3A) -> Vec3A {
     d - 2.0 * d.dot(n) * n
