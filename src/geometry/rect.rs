@@ -163,14 +163,7 @@ mod tests {
                 corner + eu * a + ev * b
             };
             let size = eu.length() + ev.length();
-            let origin = |rng: &mut Rng| {
-                corner
-                    + Vec3A::new(
-                        rng.next_f32() - 0.5,
-                        rng.next_f32() - 0.5,
-                        rng.next_f32() - 0.5,
-                    ) * (size * 3.0)
-            };
+            let origin = |rng: &mut Rng| corner + in_unit_cube(rng) * (size * 3.0);
             let hits = assert_lanes_match(
                 |ray, t_max| r.intersect(ray, t_max),
                 |rays, t_max| r.intersect_lanes(rays, t_max),

@@ -136,22 +136,14 @@ mod tests {
             };
             let c = s.center;
             let on_sphere = |rng: &mut Rng| {
-                let d = Vec3A::new(
-                    rng.next_f32() - 0.5,
-                    rng.next_f32() - 0.5,
-                    rng.next_f32() - 0.5,
-                );
+                let d = in_unit_cube(rng);
                 c + d.normalize() * r * (0.9 + rng.next_f32() * 0.2)
             };
             let origin = |rng: &mut Rng| {
                 if rng.next_f32() < 0.2 {
                     on_sphere(rng) - (on_sphere(rng) - c) * 0.5
                 } else {
-                    c + Vec3A::new(
-                        rng.next_f32() - 0.5,
-                        rng.next_f32() - 0.5,
-                        rng.next_f32() - 0.5,
-                    ) * (r * 20.0)
+                    c + in_unit_cube(rng) * (r * 20.0)
                 }
             };
             let hits = assert_lanes_match(

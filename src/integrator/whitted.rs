@@ -38,15 +38,8 @@ impl Integrator for Whitted {
             let found = &mut found[..batch.len()];
             scene.closest_hits(batch, found);
             for ((ray, f), o) in batch.iter().zip(found.iter()).zip(out.iter_mut()) {
-                let seg = Segment {
-                    kind: RayKind::Camera,
-                    from: ray.origin,
-                    depth: 1,
-                    medium: None,
-                    weight: Color::ONE,
-                };
-                rays.camera += 1;
-                rays.deepest = rays.deepest.max(1);
+                let seg = Segment::camera(ray);
+                seg.begin(ray, rays, &mut NoRecord);
                 *o = self.trace_found(scene, ray, f, &seg, rays, &mut NoRecord);
             }
         }
@@ -63,6 +56,31 @@ struct Segment {
     medium: Option<Color>,
     /// What the parent multiplies its colour by (for the record).
     weight: Color,
+}
+
+impl Segment {
+    /// A camera ray's segment.
+    fn camera(ray: &Ray) -> Self {
+        Segment {
+            kind: RayKind::Camera,
+            from: ray.origin,
+            depth: 1,
+            medium: None,
+            weight: Color::ONE,
+        }
+    }
+
+    /// Counts `ray`, the ray of this segment, and reports it to `rec`.
+    #[inline(always)]
+    fn begin<R: Recorder>(&self, ray: &Ray, rays: &mut RayStats, rec: &mut R) {
+        if self.depth == 1 {
+            rays.camera += 1;
+        } else {
+            rays.secondary += 1;
+        }
+        rays.deepest = rays.deepest.max(self.depth);
+        rec.begin_ray(self.kind, ray, self.depth, self.weight);
+    }
 }
 
 impl Whitted {
@@ -100,14 +118,7 @@ impl Whitted {
         rays: &mut RayStats,
         rec: &mut impl Recorder,
     ) -> Color {
-        let seg = Segment {
-            kind: RayKind::Camera,
-            from: ray.origin,
-            depth: 1,
-            medium: None,
-            weight: Color::ONE,
-        };
-        self.trace_from(scene, ray, &seg, rays, rec)
+        self.trace_from(scene, ray, &Segment::camera(ray), rays, rec)
     }
 
     /// The colour along `ray`; absorption and fog are measured from `seg.from`, so the
@@ -120,13 +131,7 @@ impl Whitted {
         rays: &mut RayStats,
         rec: &mut R,
     ) -> Color {
-        if seg.depth == 1 {
-            rays.camera += 1;
-        } else {
-            rays.secondary += 1;
-        }
-        rays.deepest = rays.deepest.max(seg.depth);
-        rec.begin_ray(seg.kind, ray, seg.depth, seg.weight);
+        seg.begin(ray, rays, rec);
         // A record shows the uv even where no texture needs it.
         let found = if R::ACTIVE {
             scene.closest_hit_with_uv(ray, f32::INFINITY)
