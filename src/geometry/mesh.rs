@@ -6,7 +6,7 @@ use super::triangle::{RowRay, rows_of};
 use super::{ShapeHit, Surface};
 use crate::accel::push_child;
 use crate::math::{Aabb, Ray, Vec2, Vec3, Vec3A};
-#[cfg(not(all(target_arch = "x86_64", target_feature = "avx")))]
+#[cfg(any(test, not(all(target_arch = "x86_64", target_feature = "avx"))))]
 use glam::Vec4;
 use obvhs::cwbvh::node::CwBvhNode;
 use std::time::{Duration, Instant};
@@ -335,22 +335,17 @@ pub(crate) struct NodeRay {
     near_side: [usize; 3],
 }
 
-/// Eight floats, one per child of a node: a 256-bit vector where the build has AVX, two
-/// 128-bit ones elsewhere.
+/// A ray coordinate for the node test: in all eight lanes of a 256-bit vector where the build
+/// has AVX; elsewhere one float, which the portable test spreads over 128-bit vectors.
 #[cfg(all(target_arch = "x86_64", target_feature = "avx"))]
 type Lanes = safe_arch::m256;
 #[cfg(not(all(target_arch = "x86_64", target_feature = "avx")))]
-type Lanes = [Vec4; 2];
+type Lanes = f32;
 
 impl NodeRay {
     #[inline(always)]
     pub(crate) fn new(ray: &Ray) -> Self {
-        // Capped so that nothing in the node test overflows to infinity (and then to NaN when
-        // multiplied by a zero) for coordinates up to the 1e15 scene files allow.
-        const CAP: f32 = 1e20;
-        let inv = Vec3A::ONE / ray.dir;
-        let capped = Vec3A::splat(CAP).copysign(inv);
-        let inv = Vec3A::select(inv.abs().cmple(Vec3A::splat(CAP)), inv, capped);
+        let inv = capped_inverse(ray.dir);
         NodeRay {
             origin: [0, 1, 2].map(|a| splat(ray.origin[a])),
             inv_dir: [0, 1, 2].map(|a| splat(inv[a])),
@@ -384,30 +379,55 @@ impl NodeRay {
         (near.to_array(), move_mask_m256(met) as u32)
     }
 
-    /// [`NodeRay::hits`] four children at a time.
+    /// [`NodeRay::hits`] without AVX.
     #[cfg(not(all(target_arch = "x86_64", target_feature = "avx")))]
     #[inline(always)]
     pub(crate) fn hits(&self, node: &WideNode, t_max: f32) -> ([f32; 8], u32) {
-        let mut nears = [0.0; 8];
-        let mut mask = 0;
-        for (half, nears) in nears.chunks_exact_mut(4).enumerate() {
-            let mut near = Vec4::ZERO;
-            let mut far = Vec4::splat(f32::INFINITY);
-            for axis in 0..3 {
-                let side = self.near_side[axis] & 1;
-                let planes = &node.planes[axis];
-                let (o, inv) = (self.origin[axis][half], self.inv_dir[axis][half]);
-                let n = Vec4::from_slice(&planes[side][4 * half..]);
-                let f = Vec4::from_slice(&planes[side ^ 1][4 * half..]);
-                near = near.max((n - o) * inv);
-                far = far.min((f - o) * inv);
-            }
-            let far = (far * SLACK).min(Vec4::splat(t_max));
-            mask |= near.cmple(far).bitmask() << (half * 4);
-            nears.copy_from_slice(&near.to_array());
-        }
-        (nears, mask)
+        hits_portable(self.origin, self.inv_dir, self.near_side, node, t_max)
     }
+}
+
+/// `1 / d`, capped so that nothing in the node test overflows to infinity (and then to NaN
+/// when multiplied by a zero) for coordinates up to the 1e15 scene files allow.
+#[inline(always)]
+fn capped_inverse(d: Vec3A) -> Vec3A {
+    const CAP: f32 = 1e20;
+    let inv = Vec3A::ONE / d;
+    let capped = Vec3A::splat(CAP).copysign(inv);
+    Vec3A::select(inv.abs().cmple(Vec3A::splat(CAP)), inv, capped)
+}
+
+/// [`NodeRay::hits`] four children at a time, in 128-bit vectors: the test of builds without
+/// AVX. Test builds compile it everywhere, so that it is linted and checked against the AVX
+/// test where the machine has AVX.
+#[cfg(any(test, not(all(target_arch = "x86_64", target_feature = "avx"))))]
+#[inline(always)]
+fn hits_portable(
+    origin: [f32; 3],
+    inv_dir: [f32; 3],
+    near_side: [usize; 3],
+    node: &WideNode,
+    t_max: f32,
+) -> ([f32; 8], u32) {
+    let mut nears = [0.0; 8];
+    let mut mask = 0;
+    for (half, nears) in nears.chunks_exact_mut(4).enumerate() {
+        let mut near = Vec4::ZERO;
+        let mut far = Vec4::splat(f32::INFINITY);
+        for axis in 0..3 {
+            let side = near_side[axis] & 1;
+            let planes = &node.planes[axis];
+            let (o, inv) = (Vec4::splat(origin[axis]), Vec4::splat(inv_dir[axis]));
+            let n = Vec4::from_slice(&planes[side][4 * half..]);
+            let f = Vec4::from_slice(&planes[side ^ 1][4 * half..]);
+            near = near.max((n - o) * inv);
+            far = far.min((f - o) * inv);
+        }
+        let far = (far * SLACK).min(Vec4::splat(t_max));
+        mask |= near.cmple(far).bitmask() << (half * 4);
+        nears.copy_from_slice(&near.to_array());
+    }
+    (nears, mask)
 }
 
 /// `x` in every lane.
@@ -416,7 +436,7 @@ fn splat(x: f32) -> Lanes {
     #[cfg(all(target_arch = "x86_64", target_feature = "avx"))]
     return safe_arch::set_splat_m256(x);
     #[cfg(not(all(target_arch = "x86_64", target_feature = "avx")))]
-    return [Vec4::splat(x); 2];
+    return x;
 }
 
 /// Marks a child reference as a leaf: `LEAF | (count - 1) << COUNT_SHIFT | first triangle`.
@@ -639,6 +659,8 @@ mod tests {
     /// The node test (the AVX one or the portable one, whichever this build has) against
     /// the plain slab test, child by child: random boxes (some empty, some flat, some
     /// behind the ray) and random rays, with directions that have +0 and -0 components.
+    /// The portable test, which every test build compiles, gives the same answers to the
+    /// bit.
     #[test]
     fn node_test_agrees_with_the_slab_test() {
         let mut rng = Rng::new(5);
@@ -683,6 +705,16 @@ mod tests {
                 r(0.0, 4.0)
             };
             let (nears, mask) = NodeRay::new(&ray).hits(&node, t_max);
+            let inv = capped_inverse(ray.dir);
+            let near_side = [0, 1, 2].map(|a| inv[a].is_sign_negative() as usize);
+            let (portable_nears, portable_mask) = hits_portable(
+                ray.origin.to_array(),
+                inv.to_array(),
+                near_side,
+                &node,
+                t_max,
+            );
+            assert_eq!(portable_mask, mask, "case {case}");
             // The same formulas, one child and one axis at a time.
             let inv = (Vec3A::ONE / ray.dir).to_array().map(|i| {
                 if i.abs() <= 1e20 {
@@ -708,6 +740,11 @@ mod tests {
                 assert!(used[child] || !met, "case {case}: empty child {child} met");
                 if met {
                     assert_eq!(nears[child], near, "case {case}, child {child}");
+                    assert_eq!(
+                        portable_nears[child].to_bits(),
+                        near.to_bits(),
+                        "case {case}"
+                    );
                 }
             }
         }
