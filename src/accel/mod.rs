@@ -412,9 +412,9 @@ impl Bvh {
         for (l, ray) in rays.iter().enumerate() {
             out[l] = None;
             for &i in &self.unbounded {
-                if let Some(h) = &objects[i as usize].intersect(ray, limit[l]) {
+                if let Some(h) = objects[i as usize].intersect(ray, limit[l]) {
                     limit[l] = h.t;
-                    out[l] = Some((i as usize, *h));
+                    out[l] = Some((i as usize, h));
                 }
             }
         }

@@ -274,7 +274,7 @@ pub(crate) mod test_util {
     /// off. Returns how many rays hit.
     pub fn assert_lanes_match(
         one: impl Fn(&Ray, f32) -> Option<ShapeHit>,
-        lanes: impl Fn(&crate::math::RayLanes, &[f32; crate::math::LANES]) -> [f32; 8],
+        lanes: impl Fn(&crate::math::RayLanes, &[f32; crate::math::LANES]) -> [f32; crate::math::LANES],
         mut origin: impl FnMut(&mut crate::math::Rng) -> Vec3A,
         mut target: impl FnMut(&mut crate::math::Rng) -> Vec3A,
     ) -> usize {

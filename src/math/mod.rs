@@ -190,7 +190,7 @@ mod tests {
     fn reflected_directions_stay_unit() {
         let mut rng = Rng::new(11);
         let unit = |rng: &mut Rng| loop {
-            let v = Vec3A::new(rng.next_f32(), rng.next_f32(), rng.next_f32()) * 2.0 - 1.0;
+            let v = crate::geometry::test_util::in_unit_cube(rng) * 2.0;
             if (0.01..1.0).contains(&v.length_squared()) {
                 return v.normalize();
             }

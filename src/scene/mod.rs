@@ -608,6 +608,7 @@ impl Scene {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::geometry::test_util::in_unit_cube;
     use crate::math::Rng;
     use std::path::Path;
 
@@ -683,12 +684,8 @@ mod tests {
                         if camera_like {
                             Ray::new(Vec3A::ZERO, (center + jitter * 0.01).normalize())
                         } else {
-                            let o = Vec3A::new(rng.next_f32(), rng.next_f32(), rng.next_f32())
-                                * 20.0
-                                - Vec3A::new(10.0, 10.0, 25.0);
-                            let d =
-                                Vec3A::new(rng.next_f32(), rng.next_f32(), rng.next_f32()) - 0.5;
-                            Ray::new(o, d.normalize())
+                            let o = in_unit_cube(&mut rng) * 20.0 - Vec3A::new(0.0, 0.0, 15.0);
+                            Ray::new(o, in_unit_cube(&mut rng).normalize())
                         }
                     })
                     .collect();
