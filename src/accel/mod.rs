@@ -78,11 +78,31 @@ struct Flat {
     used: u32,
 }
 
+/// An object a ray query leaves out: the one whose surface the ray leaves, when it cannot meet
+/// it again (a flat shape, or a convex one left through its outside: see
+/// [`crate::geometry::Leaving`]). Every ray leaving a surface in the seed scene is such a ray,
+/// and the surface's own box, which holds the ray's origin, was the first one its walk
+/// visited, for a test that could only miss.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Skip(u32);
+
+impl Skip {
+    /// Leaves nothing out.
+    pub const NONE: Skip = Skip(u32::MAX);
+
+    /// Leaves out object `i`.
+    pub fn object(i: usize) -> Skip {
+        Skip(i as u32)
+    }
+}
+
 /// The objects of a scene, arranged for fast ray queries.
 #[derive(Clone, Debug, Default)]
 pub struct Bvh {
     /// Small scenes: every bounded object's box, instead of a tree.
     flat: Option<Flat>,
+    /// Small scenes: per object, the bit of the slot its box has in `flat` (0 for none).
+    flat_bit: Vec<u32>,
     nodes: Vec<Node4>,
     /// `(first, count)` ranges of `order`.
     leaves: Vec<(u32, u32)>,
@@ -162,9 +182,11 @@ impl Bvh {
                 first: items[0].1,
                 used: 0,
             };
+            bvh.flat_bit = vec![0; objects.len()];
             for (k, (i, b)) in items.iter().enumerate() {
                 flat.node.set_child(k, b, *i);
                 flat.used |= 1 << k;
+                bvh.flat_bit[*i as usize] = 1 << k;
             }
             bvh.flat = Some(flat);
         } else if !items.is_empty() {
@@ -186,7 +208,7 @@ impl Bvh {
         self.flat.map_or(0, |_| std::mem::size_of::<Flat>())
             + self.nodes.len() * std::mem::size_of::<Node4>()
             + self.leaves.len() * 8
-            + (self.order.len() + self.unbounded.len()) * 4
+            + (self.order.len() + self.unbounded.len() + self.flat_bit.len()) * 4
     }
 
     /// Levels of four-wide nodes from `r` down.
@@ -235,42 +257,50 @@ impl Bvh {
         index as u32
     }
 
-    /// Calls `visit(object, t_max)` for every object whose bounds the ray may meet before
-    /// `t_max` (which `visit` lowers as it finds hits), nearer subtrees first. `visit`
-    /// returns `Err(())` to stop early.
+    /// Calls `visit(object, t_max)` for every object but `skip` whose bounds the ray may
+    /// meet before `t_max` (which `visit` lowers as it finds hits), nearer subtrees first.
+    /// `visit` returns `Err(())` to stop early.
     #[inline(always)]
     fn traverse<const ORDERED: bool>(
         &self,
         ray: &Ray,
         mut t_max: f32,
+        skip: Skip,
         mut visit: impl FnMut(usize, &mut f32) -> Result<(), ()>,
     ) {
         for &i in &self.unbounded {
-            if visit(i as usize, &mut t_max).is_err() {
+            if i != skip.0 && visit(i as usize, &mut t_max).is_err() {
                 return;
             }
         }
         if let Some(flat) = &self.flat {
-            self.traverse_flat::<ORDERED>(flat, ray, t_max, visit)
+            let skip_bit = self.flat_bit.get(skip.0 as usize).copied().unwrap_or(0);
+            self.traverse_flat::<ORDERED>(flat, ray, t_max, skip_bit, visit)
         } else if self.depth <= SMALL_DEPTH {
             // Every ray sets up a stack: a small tree needs only a few entries, and filling
             // the full one cost 7 % of the seed scene's time.
-            self.traverse_with::<ORDERED, { 3 * SMALL_DEPTH + 1 }>(ray, t_max, visit)
+            self.traverse_with::<ORDERED, { 3 * SMALL_DEPTH + 1 }>(ray, t_max, skip, visit)
         } else {
-            self.traverse_with::<ORDERED, STACK>(ray, t_max, visit)
+            self.traverse_with::<ORDERED, STACK>(ray, t_max, skip, visit)
         }
     }
 
     /// [`Bvh::traverse`]'s bounded objects for a scene without a tree: all boxes at once
-    /// (or the lone object's box), then the objects met, nearest box first when `ORDERED`.
+    /// (or the lone object's box), then the objects met but the one in slot `skip_bit`,
+    /// nearest box first when `ORDERED`.
     #[inline(always)]
     fn traverse_flat<const ORDERED: bool>(
         &self,
         flat: &Flat,
         ray: &Ray,
         mut t_max: f32,
+        skip_bit: u32,
         mut visit: impl FnMut(usize, &mut f32) -> Result<(), ()>,
     ) {
+        let used = flat.used & !skip_bit;
+        if used == 0 {
+            return;
+        }
         if flat.used == 1 {
             // One bounded object (a model on an unbounded floor): one box, not a group of
             // eight. (Skipping the box altogether cost rays that miss a mesh a quarter more
@@ -281,7 +311,7 @@ impl Bvh {
             return;
         }
         let (nears, mask) = NodeRay::new(ray).hits(&flat.node, t_max);
-        let mut mask = mask & flat.used;
+        let mut mask = mask & used;
         while mask != 0 {
             let k = if ORDERED {
                 // The nearest box left (a handful at most: a linear search beats sorting).
@@ -317,6 +347,7 @@ impl Bvh {
         &self,
         ray: &Ray,
         mut t_max: f32,
+        skip: Skip,
         mut visit: impl FnMut(usize, &mut f32) -> Result<(), ()>,
     ) {
         let Some((root, bounds)) = self.root else {
@@ -339,7 +370,7 @@ impl Bvh {
             if r & LEAF != 0 {
                 let (first, count) = self.leaves[(r & !LEAF) as usize];
                 for &o in &self.order[first as usize..(first + count) as usize] {
-                    if visit(o as usize, &mut t_max).is_err() {
+                    if o != skip.0 && visit(o as usize, &mut t_max).is_err() {
                         return;
                     }
                 }
@@ -360,16 +391,18 @@ impl Bvh {
         }
     }
 
-    /// The nearest hit in `(0, t_max)`: object index and the shape's hit.
+    /// The nearest hit in `(0, t_max)` on any object but `skip`: object index and the
+    /// shape's hit.
     #[inline]
     pub fn closest_hit(
         &self,
         objects: &[Object],
         ray: &Ray,
         t_max: f32,
+        skip: Skip,
     ) -> Option<(usize, ShapeHit)> {
         let mut best = None;
-        self.traverse::<true>(ray, t_max, |i, limit| {
+        self.traverse::<true>(ray, t_max, skip, |i, limit| {
             if let Some(h) = objects[i].intersect(ray, *limit) {
                 *limit = h.t;
                 best = Some((i, h));
@@ -402,7 +435,7 @@ impl Bvh {
             Some(flat) if flat.used != 1 && !rays.is_empty() => flat,
             _ => {
                 for (ray, o) in rays.iter().zip(out.iter_mut()) {
-                    *o = self.closest_hit(objects, ray, f32::INFINITY);
+                    *o = self.closest_hit(objects, ray, f32::INFINITY, Skip::NONE);
                 }
                 return;
             }
@@ -487,28 +520,31 @@ impl Bvh {
         objects: &[Object],
         ray: &Ray,
         t_max: f32,
+        skip: Skip,
         blocks: impl Fn(usize) -> bool,
     ) -> bool {
-        self.first_blocker_and_others(objects, ray, t_max, blocks)
+        self.first_blocker_and_others(objects, ray, t_max, skip, blocks)
             .0
             .is_some()
     }
 
-    /// The first object found (not necessarily the nearest) for which `blocks(i)` holds and
-    /// that the ray hits in `(0, t_max)`, and whether the ray met the bounds of any object
-    /// that does not block (before a blocker was found): when it met none, no such object can
-    /// be hit in `(0, t_max)` either, and a shadow ray need not look for glass.
+    /// The first object but `skip` found (not necessarily the nearest) for which `blocks(i)`
+    /// holds and that the ray hits in `(0, t_max)`, and whether the ray met the bounds of any
+    /// other object that does not block (before a blocker was found): when it met none, no
+    /// such object but `skip` can be hit in `(0, t_max)` either, and a shadow ray need not
+    /// look for glass.
     #[inline]
     pub fn first_blocker_and_others(
         &self,
         objects: &[Object],
         ray: &Ray,
         t_max: f32,
+        skip: Skip,
         blocks: impl Fn(usize) -> bool,
     ) -> (Option<usize>, bool) {
         let mut found = None;
         let mut others = false;
-        self.traverse::<false>(ray, t_max, |i, limit| {
+        self.traverse::<false>(ray, t_max, skip, |i, limit| {
             if !blocks(i) {
                 others = true;
                 Ok(())
@@ -646,7 +682,8 @@ mod tests {
 
     /// Both layouts, the flat one of small scenes and the tree, give what testing every
     /// object gives: the same nearest hit, a blocker exactly when there is one, and word of
-    /// the other objects whenever one of them is hit.
+    /// the other objects whenever one of them is hit; with an object left out, as if it
+    /// were not there.
     #[test]
     fn flat_and_tree_layouts_agree_with_testing_every_object() {
         let mut rng = Rng::new(11);
@@ -672,29 +709,33 @@ mod tests {
                 } else {
                     f32::INFINITY
                 };
-                let brute = objects
-                    .iter()
-                    .enumerate()
+                // Half the rays leave one object out (which need not be near them).
+                let left_out = (rng.next_f32() < 0.5).then(|| (rng.next_f32() * n as f32) as usize);
+                let skip = left_out.map_or(Skip::NONE, Skip::object);
+                let kept = || {
+                    objects
+                        .iter()
+                        .enumerate()
+                        .filter(|(i, _)| Some(*i) != left_out)
+                };
+                let brute = kept()
                     .filter_map(|(i, o)| o.intersect(&ray, t_max).map(|h| (i, h.t)))
                     .min_by(|a, b| a.1.total_cmp(&b.1));
                 let found = bvh
-                    .closest_hit(&objects, &ray, t_max)
+                    .closest_hit(&objects, &ray, t_max, skip)
                     .map(|(i, h)| (i, h.t));
-                assert_eq!(found, brute, "{n} objects, {ray:?}");
+                assert_eq!(found, brute, "{n} objects, {ray:?}, {skip:?}");
                 let odd = |i: usize| i % 2 == 1;
-                let blocked = objects
-                    .iter()
-                    .enumerate()
-                    .any(|(i, o)| odd(i) && o.intersect(&ray, t_max).is_some());
-                assert_eq!(bvh.any_hit(&objects, &ray, t_max, odd), blocked);
+                let blocked = kept().any(|(i, o)| odd(i) && o.intersect(&ray, t_max).is_some());
+                assert_eq!(bvh.any_hit(&objects, &ray, t_max, skip, odd), blocked);
                 // Without a blocker, "met no other object's bounds" must mean no other
                 // object is hit: shadow rays skip the glass on its word.
-                let (blocker, others) = bvh.first_blocker_and_others(&objects, &ray, t_max, odd);
+                let (blocker, others) =
+                    bvh.first_blocker_and_others(&objects, &ray, t_max, skip, odd);
                 assert_eq!(blocker.is_some(), blocked);
-                let other_hit = objects
-                    .iter()
-                    .enumerate()
-                    .any(|(i, o)| !odd(i) && o.intersect(&ray, t_max).is_some());
+                assert!(left_out.is_none() || blocker != left_out, "blocked by the object left out");
+                let other_hit =
+                    kept().any(|(i, o)| !odd(i) && o.intersect(&ray, t_max).is_some());
                 assert!(blocked || others || !other_hit, "{n} objects, {ray:?}");
             }
         }

@@ -52,6 +52,21 @@ pub struct Surface {
     pub uv: Vec2,
 }
 
+/// Which rays leaving a shape's surface can never meet the shape again, so that a query for
+/// such a ray may leave the shape out (see [`Shape::leaving`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Leaving {
+    /// A flat shape (plane, rectangle, disk, triangle): a ray leaving it on either side stays
+    /// off its plane.
+    EitherSide,
+    /// Part of the boundary of a convex solid (sphere, box, cylinder or cone, open or capped):
+    /// a ray leaving on the side the outward normal points to stays outside the supporting
+    /// half-space there, which holds the whole solid.
+    Outside,
+    /// A shape a ray may meet again from anywhere on it (a mesh).
+    MayReturn,
+}
+
 /// Every kind of shape snell can intersect.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Shape {
@@ -186,6 +201,21 @@ impl Shape {
             Shape::Cylinder(s) => s.contains(p),
             Shape::Cone(s) => s.contains(p),
             _ => false,
+        }
+    }
+
+    /// Which rays leaving this shape's surface cannot meet it again. An affine transform
+    /// keeps flat shapes flat and convex ones convex, and the outward normal outward, so this
+    /// holds of a placed object too.
+    pub fn leaving(&self) -> Leaving {
+        match self {
+            Shape::Plane(_) | Shape::Rect(_) | Shape::Disk(_) | Shape::Triangle(_) => {
+                Leaving::EitherSide
+            }
+            Shape::Sphere(_) | Shape::Cuboid(_) | Shape::Cylinder(_) | Shape::Cone(_) => {
+                Leaving::Outside
+            }
+            Shape::Mesh(_) => Leaving::MayReturn,
         }
     }
 

@@ -10,7 +10,7 @@ use super::{RayStats, Whitted};
 use crate::film::Image;
 use crate::math::{Color, Vec2, Vec3A};
 use crate::render::RenderError;
-use crate::scene::Scene;
+use crate::scene::{Scene, Skip};
 use crate::texture::srgb_to_linear;
 use rayon::prelude::*;
 
@@ -135,7 +135,7 @@ fn sample(scene: &Scene, x: u32, y: u32) -> Sample {
     let mut rays = RayStats::default();
     Whitted.trace(scene, &ray, 1, None, &mut rays);
     let bounces = rays.deepest.saturating_sub(1);
-    match scene.closest_hit_with_uv(&ray, f32::INFINITY) {
+    match scene.closest_hit_with_uv(&ray, f32::INFINITY, Skip::NONE) {
         None => Sample {
             normal: Vec3A::ZERO,
             uv: Vec2::ZERO,

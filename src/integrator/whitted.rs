@@ -10,7 +10,7 @@ use super::explain::{
 use super::{Integrator, RayStats};
 use crate::light::Light;
 use crate::math::{Color, Ray, Vec3A, fresnel_dielectric, offset_ray_origin, reflect, refract};
-use crate::scene::{Hit, Scene};
+use crate::scene::{Hit, Scene, Skip};
 
 /// The Whitted integrator.
 #[derive(Clone, Copy, Debug, Default)]
@@ -56,6 +56,8 @@ struct Segment {
     medium: Option<Color>,
     /// What the parent multiplies its colour by (for the record).
     weight: Color,
+    /// The object whose surface the ray leaves, when it cannot meet it again.
+    skip: Skip,
 }
 
 impl Segment {
@@ -67,6 +69,7 @@ impl Segment {
             depth: 1,
             medium: None,
             weight: Color::ONE,
+            skip: Skip::NONE,
         }
     }
 
@@ -106,6 +109,7 @@ impl Whitted {
             depth,
             medium,
             weight: Color::ONE,
+            skip: Skip::NONE,
         };
         self.trace_from(scene, ray, &seg, rays, &mut NoRecord)
     }
@@ -134,9 +138,9 @@ impl Whitted {
         seg.begin(ray, rays, rec);
         // A record shows the uv even where no texture needs it.
         let found = if R::ACTIVE {
-            scene.closest_hit_with_uv(ray, f32::INFINITY)
+            scene.closest_hit_with_uv(ray, f32::INFINITY, seg.skip)
         } else {
-            scene.closest_hit(ray, f32::INFINITY)
+            scene.closest_hit_skipping(ray, f32::INFINITY, seg.skip)
         };
         self.trace_found(scene, ray, &found, seg, rays, rec)
     }
@@ -229,6 +233,8 @@ impl Whitted {
         };
         let base = scene.textures[m.texture].eval(&hit.tex);
         let above = offset_ray_origin(hit.point, n);
+        // Rays from `above` leave through the outside exactly when the ray came from there.
+        let skip_above = scene.leaving(hit, entering);
         if R::ACTIVE {
             rec.hit(hit_record(scene, hit, entering, base));
         }
@@ -294,8 +300,14 @@ impl Whitted {
                 }
                 continue;
             }
-            let (seen, shadow) =
-                self.shadow_recorded::<R>(scene, above, ls.to_light, ls.distance, rays);
+            let (seen, shadow) = self.shadow_recorded::<R>(
+                scene,
+                above,
+                ls.to_light,
+                ls.distance,
+                skip_above,
+                rays,
+            );
             let adds = ls.radiance * direct * seen;
             out += adds;
             if R::ACTIVE {
@@ -358,6 +370,7 @@ impl Whitted {
                     depth: seg.depth + 1,
                     medium: inside,
                     weight,
+                    skip: scene.leaving(hit, !entering),
                 };
                 out += self.trace_from(scene, &Ray::new(below, dir), &child, rays, rec) * weight;
             }
@@ -375,6 +388,7 @@ impl Whitted {
                 depth: seg.depth + 1,
                 medium: seg.medium,
                 weight: Color::splat(reflect_weight),
+                skip: skip_above,
             };
             out += self.trace_from(scene, &r, &child, rays, rec) * reflect_weight;
         }
@@ -393,17 +407,19 @@ impl Whitted {
         distance: f32,
         rays: &mut RayStats,
     ) -> Color {
-        self.shadow_recorded::<NoRecord>(scene, origin, dir, distance, rays)
+        self.shadow_recorded::<NoRecord>(scene, origin, dir, distance, Skip::NONE, rays)
             .0
     }
 
-    /// [`Whitted::shadow`], with what the shadow ray met when `R` records.
+    /// [`Whitted::shadow`], leaving out `skip` (the surface the ray leaves, which it cannot
+    /// meet again), with what the shadow ray met when `R` records.
     fn shadow_recorded<R: Recorder>(
         &self,
         scene: &Scene,
         origin: Vec3A,
         dir: Vec3A,
         distance: f32,
+        skip: Skip,
         rays: &mut RayStats,
     ) -> (Color, Option<ShadowRecord>) {
         let ray = Ray::new(origin, dir);
@@ -418,7 +434,7 @@ impl Whitted {
         // One walk finds an opaque blocker and says whether any glass's bounds lie on the
         // way; only then is the glass looked for (in the seed scene, most shadow rays pass
         // nowhere near the diamond).
-        let (blocker, glass_near) = scene.opaque_blocker_seeing_glass(&ray, distance);
+        let (blocker, glass_near) = scene.opaque_blocker_seeing_glass(&ray, distance, skip);
         if let Some(b) = blocker {
             if let Some(r) = &mut record {
                 r.blocked_by = Some(scene.objects[b].name.clone());

@@ -10,10 +10,11 @@ pub use build::{MAX_MAGNITUDE, load, load_str, load_with};
 pub use diag::{DocPath, Format, Problem, SceneDiagnostic, SceneError, Seg, did_you_mean};
 pub use format::schema;
 
+pub use crate::accel::Skip;
 use crate::accel::Bvh;
 use crate::camera::Camera;
 use crate::film::Filter;
-use crate::geometry::{Shape, ShapeHit};
+use crate::geometry::{Leaving, Shape, ShapeHit};
 use crate::light::Light;
 use crate::material::Material;
 use crate::math::{Aabb, Color, LANES, Ray, Transform, Vec3A};
@@ -443,8 +444,28 @@ impl Scene {
     /// Closest hit of a world ray in `(0, t_max)`, with its surface details.
     #[inline]
     pub fn closest_hit(&self, ray: &Ray, t_max: f32) -> Option<Hit> {
-        let (i, h) = self.accel.closest_hit(&self.objects, ray, t_max)?;
+        self.closest_hit_skipping(ray, t_max, Skip::NONE)
+    }
+
+    /// [`Scene::closest_hit`] on every object but `skip` (see [`Scene::leaving`]).
+    #[inline]
+    pub fn closest_hit_skipping(&self, ray: &Ray, t_max: f32, skip: Skip) -> Option<Hit> {
+        let (i, h) = self.accel.closest_hit(&self.objects, ray, t_max, skip)?;
         Some(self.hit_details(ray, i, h, false))
+    }
+
+    /// What a ray leaving `hit`'s surface may leave out of its queries: the object hit, when
+    /// the ray cannot meet it again (a flat shape, left on either side; a convex solid's
+    /// surface, left on the side its outward normal points to, which `outward` says);
+    /// otherwise nothing. The ray must really leave: its direction on the side it starts
+    /// on, not along the surface.
+    #[inline]
+    pub fn leaving(&self, hit: &Hit, outward: bool) -> Skip {
+        match self.objects[hit.object].shape.leaving() {
+            Leaving::EitherSide => Skip::object(hit.object),
+            Leaving::Outside if outward => Skip::object(hit.object),
+            _ => Skip::NONE,
+        }
     }
 
     /// [`Scene::closest_hit`] of each of `rays` (any number; `out` as long), found a packet
@@ -462,10 +483,10 @@ impl Scene {
         }
     }
 
-    /// As [`Scene::closest_hit`], with the shape's uv worked out even where no texture reads
-    /// it (for debug views).
-    pub fn closest_hit_with_uv(&self, ray: &Ray, t_max: f32) -> Option<Hit> {
-        let (i, h) = self.accel.closest_hit(&self.objects, ray, t_max)?;
+    /// As [`Scene::closest_hit_skipping`], with the shape's uv worked out even where no
+    /// texture reads it (for debug views).
+    pub fn closest_hit_with_uv(&self, ray: &Ray, t_max: f32, skip: Skip) -> Option<Hit> {
+        let (i, h) = self.accel.closest_hit(&self.objects, ray, t_max, skip)?;
         Some(self.hit_details(ray, i, h, true))
     }
 
@@ -473,7 +494,7 @@ impl Scene {
     /// shape's hit (what a ray query alone returns, for benchmarks and tools).
     #[inline]
     pub fn intersect(&self, ray: &Ray, t_max: f32) -> Option<(usize, ShapeHit)> {
-        self.accel.closest_hit(&self.objects, ray, t_max)
+        self.accel.closest_hit(&self.objects, ray, t_max, Skip::NONE)
     }
 
     /// Closest hit in `(0, t_max)` among the transparent objects only.
@@ -530,16 +551,21 @@ impl Scene {
     #[inline]
     pub fn opaque_blocked(&self, ray: &Ray, t_max: f32) -> bool {
         self.accel
-            .any_hit(&self.objects, ray, t_max, |i| !self.transparent[i])
+            .any_hit(&self.objects, ray, t_max, Skip::NONE, |i| !self.transparent[i])
     }
 
-    /// An opaque object that blocks the ray in `(0, t_max)`, if any (the first found), and
-    /// whether the ray met the bounds of a transparent object (or an unbounded one) on the
-    /// way: if not, it crosses no glass in `(0, t_max)`.
+    /// An opaque object but `skip` that blocks the ray in `(0, t_max)`, if any (the first
+    /// found), and whether the ray met the bounds of a transparent object but `skip` (or an
+    /// unbounded one) on the way: if not, it crosses no glass but `skip` in `(0, t_max)`.
     #[inline]
-    pub fn opaque_blocker_seeing_glass(&self, ray: &Ray, t_max: f32) -> (Option<usize>, bool) {
+    pub fn opaque_blocker_seeing_glass(
+        &self,
+        ray: &Ray,
+        t_max: f32,
+        skip: Skip,
+    ) -> (Option<usize>, bool) {
         self.accel
-            .first_blocker_and_others(&self.objects, ray, t_max, |i| !self.transparent[i])
+            .first_blocker_and_others(&self.objects, ray, t_max, skip, |i| !self.transparent[i])
     }
 
     /// The uv the surface's texture reads at a hit: through its mapping (spherical, planar
