@@ -733,9 +733,11 @@ mod tests {
                 let (blocker, others) =
                     bvh.first_blocker_and_others(&objects, &ray, t_max, skip, odd);
                 assert_eq!(blocker.is_some(), blocked);
-                assert!(left_out.is_none() || blocker != left_out, "blocked by the object left out");
-                let other_hit =
-                    kept().any(|(i, o)| !odd(i) && o.intersect(&ray, t_max).is_some());
+                assert!(
+                    left_out.is_none() || blocker != left_out,
+                    "blocked by the object left out"
+                );
+                let other_hit = kept().any(|(i, o)| !odd(i) && o.intersect(&ray, t_max).is_some());
                 assert!(blocked || others || !other_hit, "{n} objects, {ray:?}");
             }
         }

@@ -300,14 +300,8 @@ impl Whitted {
                 }
                 continue;
             }
-            let (seen, shadow) = self.shadow_recorded::<R>(
-                scene,
-                above,
-                ls.to_light,
-                ls.distance,
-                skip_above,
-                rays,
-            );
+            let (seen, shadow) =
+                self.shadow_recorded::<R>(scene, above, ls.to_light, ls.distance, skip_above, rays);
             let adds = ls.radiance * direct * seen;
             out += adds;
             if R::ACTIVE {

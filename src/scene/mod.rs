@@ -10,8 +10,8 @@ pub use build::{MAX_MAGNITUDE, load, load_str, load_with};
 pub use diag::{DocPath, Format, Problem, SceneDiagnostic, SceneError, Seg, did_you_mean};
 pub use format::schema;
 
-pub use crate::accel::Skip;
 use crate::accel::Bvh;
+pub use crate::accel::Skip;
 use crate::camera::Camera;
 use crate::film::Filter;
 use crate::geometry::{Leaving, Shape, ShapeHit};
@@ -494,7 +494,8 @@ impl Scene {
     /// shape's hit (what a ray query alone returns, for benchmarks and tools).
     #[inline]
     pub fn intersect(&self, ray: &Ray, t_max: f32) -> Option<(usize, ShapeHit)> {
-        self.accel.closest_hit(&self.objects, ray, t_max, Skip::NONE)
+        self.accel
+            .closest_hit(&self.objects, ray, t_max, Skip::NONE)
     }
 
     /// Closest hit in `(0, t_max)` among the transparent objects only.
@@ -551,7 +552,9 @@ impl Scene {
     #[inline]
     pub fn opaque_blocked(&self, ray: &Ray, t_max: f32) -> bool {
         self.accel
-            .any_hit(&self.objects, ray, t_max, Skip::NONE, |i| !self.transparent[i])
+            .any_hit(&self.objects, ray, t_max, Skip::NONE, |i| {
+                !self.transparent[i]
+            })
     }
 
     /// An opaque object but `skip` that blocks the ray in `(0, t_max)`, if any (the first
