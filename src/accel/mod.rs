@@ -488,25 +488,32 @@ impl Bvh {
             while m != 0 {
                 let l = m.trailing_zeros() as usize;
                 m &= m - 1;
-                let hit = match &ts {
-                    // Spheres and rectangles report one part, no triangle.
-                    Some(ts) => (ts[l] != f32::INFINITY).then(|| ShapeHit {
-                        t: ts[l],
-                        part: 0,
-                        prim: 0,
-                        bary: glam::Vec2::ZERO,
-                    }),
-                    None => object.intersect(&rays[l], limit[l].next_up()),
+                // The distance is compared before a hit is made of it: a hit built on the
+                // stack and read back at once, a byte and a word written and a double word
+                // read, is a load the processor cannot forward from its stores.
+                let (t, hit) = match &ts {
+                    Some(ts) => (ts[l], None),
+                    None => match object.intersect(&rays[l], limit[l].next_up()) {
+                        Some(h) => (h.t, Some(h)),
+                        None => continue,
+                    },
                 };
-                let Some(h) = hit else {
-                    continue;
-                };
-                let first = h.t < limit[l]
-                    || (h.t == limit[l] && slot[l] < FLAT && nears[l][k] < nears[l][slot[l]]);
-                if first {
-                    limit[l] = h.t;
+                let first = t < limit[l]
+                    || (t == limit[l] && slot[l] < FLAT && nears[l][k] < nears[l][slot[l]]);
+                // (An infinite distance is a packet test's miss.)
+                if first && t != f32::INFINITY {
+                    limit[l] = t;
                     slot[l] = k;
-                    out[l] = Some((i, h));
+                    // Spheres and rectangles report one part, no triangle.
+                    out[l] = Some((
+                        i,
+                        hit.unwrap_or(ShapeHit {
+                            t,
+                            part: 0,
+                            prim: 0,
+                            bary: glam::Vec2::ZERO,
+                        }),
+                    ));
                 }
             }
         }
