@@ -93,23 +93,39 @@ impl Filter {
     /// negative lobe cannot make the weights cancel.
     #[inline]
     pub fn sample(&self, u: f32) -> (f32, f32) {
-        // `max` and `min` (unlike `clamp`) take NaN to 0, so `f` is a number in [0, 256].
+        // `max` and `min` (unlike `clamp`) take NaN to 0, so the offset's `u` is in [0, 1].
         #[expect(clippy::manual_clamp, reason = "clamp keeps NaN; this must not")]
-        let f = u.max(0.0).min(1.0) * (INVERSE - 1) as f32;
+        let x = self.offset_in_unit(u.max(0.0).min(1.0));
+        (x, self.sign_at(x))
+    }
+
+    /// [`Filter::sample`]'s offset, for a `u` already in `[0, 1]` (the renderer's strata).
+    #[inline(always)]
+    pub fn offset_in_unit(&self, u: f32) -> f32 {
+        debug_assert!((0.0..=1.0).contains(&u), "{u}");
+        let f = u * (INVERSE - 1) as f32;
         // Its whole part without a float-to-integer conversion, which Rust makes saturating
         // (a dozen instructions on x86, twice a sample): adding 2^23 to a whole number below
         // 2^23 is exact and leaves it in the low bits.
         let i = ((f.floor() + 8_388_608.0).to_bits() & 0x1ff).min(INVERSE as u32 - 2);
         let (lo, hi) = (self.inverse[i as usize], self.inverse[i as usize + 1]);
-        let x = lo + (hi - lo) * (f - i as f32);
-        (
-            x,
-            if x.abs() > self.negative_beyond {
-                -1.0
-            } else {
-                1.0
-            },
-        )
+        lo + (hi - lo) * (f - i as f32)
+    }
+
+    /// The sign of the weight at offset `x` from the centre (see [`Filter::sample`]).
+    #[inline(always)]
+    pub fn sign_at(&self, x: f32) -> f32 {
+        if x.abs() > self.negative_beyond {
+            -1.0
+        } else {
+            1.0
+        }
+    }
+
+    /// Whether the weight is negative anywhere (Mitchell's lobes).
+    #[inline]
+    pub fn has_negative_lobes(&self) -> bool {
+        self.negative_beyond.is_finite()
     }
 
     /// Weight of a sample `(dx, dy)` pixels from the pixel centre.
