@@ -347,8 +347,8 @@ impl NodeRay {
     pub(crate) fn new(ray: &Ray) -> Self {
         let inv = capped_inverse(ray.dir);
         NodeRay {
-            origin: [0, 1, 2].map(|a| splat(ray.origin[a])),
-            inv_dir: [0, 1, 2].map(|a| splat(inv[a])),
+            origin: splat3(ray.origin),
+            inv_dir: splat3(inv),
             // From the inverse's sign, so that a direction of -0 (whose inverse is negative)
             // takes the largest corner as its near side, as the inverse does.
             near_side: [0, 1, 2].map(|a| inv[a].is_sign_negative() as usize),
@@ -430,13 +430,25 @@ fn hits_portable(
     (nears, mask)
 }
 
-/// `x` in every lane.
+/// Each coordinate of `v` in every lane of a vector of its own. With AVX, from one 16-byte
+/// copy of `v` shuffled in registers: reading the coordinates one by one from a ray just
+/// stored (a shadow ray, made and walked at once) compiled to an 8-byte load across the
+/// middle of the 16-byte store, which the processor cannot forward, and the walk waited
+/// for the store to reach the cache.
 #[inline(always)]
-fn splat(x: f32) -> Lanes {
+fn splat3(v: Vec3A) -> [Lanes; 3] {
     #[cfg(all(target_arch = "x86_64", target_feature = "avx"))]
-    return safe_arch::set_splat_m256(x);
+    {
+        use safe_arch::{load_m128_splat_m256, m128, permute_m256};
+        let both = load_m128_splat_m256(&m128(v.into()));
+        [
+            permute_m256::<0b00_00_00_00>(both),
+            permute_m256::<0b01_01_01_01>(both),
+            permute_m256::<0b10_10_10_10>(both),
+        ]
+    }
     #[cfg(not(all(target_arch = "x86_64", target_feature = "avx")))]
-    return x;
+    [v.x, v.y, v.z]
 }
 
 /// Marks a child reference as a leaf: `LEAF | (count - 1) << COUNT_SHIFT | first triangle`.
