@@ -464,6 +464,62 @@ mod tests {
         }
     }
 
+    /// The sampler's shortcuts (a multiplication for a power-of-two stratum count, no clamp,
+    /// no signs for filters that are never negative) place every sample where dividing,
+    /// clamping and signing did, to the bit.
+    #[test]
+    fn samples_are_placed_as_by_the_plain_formula() {
+        use crate::film::{Filter, FilterKind};
+        use crate::scene::RenderSettings;
+        for kind in [FilterKind::Box, FilterKind::Gaussian, FilterKind::Mitchell] {
+            let mut negative = 0;
+            for spp in [1u32, 4, 9, 16, 25, 64] {
+                let s = RenderSettings {
+                    width: 64,
+                    height: 64,
+                    spp,
+                    max_depth: 5,
+                    seed: 3,
+                    filter: Filter::new(kind, None),
+                };
+                for (x, y) in [(0, 0), (17, 5), (63, 40)] {
+                    let mut got = vec![];
+                    for_each_sample(&s, x, y, |px, py, sign| got.push((px, py, sign)));
+                    let n = (spp as f32).sqrt().round() as u32;
+                    let mut want = vec![];
+                    let (cx, cy) = (x as f32 + 0.5, y as f32 + 0.5);
+                    if spp == 1 {
+                        want.push((cx, cy, 1.0));
+                    } else {
+                        let mut rng = Rng::new(hash_seed(&[s.seed, x as u64, y as u64]));
+                        for j in 0..n {
+                            for i in 0..n {
+                                let (dx, sx) =
+                                    s.filter.sample((i as f32 + rng.next_f32()) / n as f32);
+                                let (dy, sy) =
+                                    s.filter.sample((j as f32 + rng.next_f32()) / n as f32);
+                                want.push((cx + dx, cy + dy, sx * sy));
+                            }
+                        }
+                    }
+                    let bits = |v: &[(f32, f32, f32)]| {
+                        v.iter()
+                            .map(|(a, b, c)| (a.to_bits(), b.to_bits(), c.to_bits()))
+                            .collect::<Vec<_>>()
+                    };
+                    assert_eq!(
+                        bits(&got),
+                        bits(&want),
+                        "{kind:?}, {spp} spp, pixel ({x}, {y})"
+                    );
+                    negative += got.iter().filter(|g| g.2 < 0.0).count();
+                }
+            }
+            // Only Mitchell's lobes are negative, and some samples land in them.
+            assert_eq!(negative > 0, kind == FilterKind::Mitchell, "{kind:?}");
+        }
+    }
+
     #[test]
     fn scattered_order_visits_every_tile_once() {
         for n in [1u32, 2, 7, 64, 100, 4096, 4097] {

@@ -395,6 +395,105 @@ mod tests {
         assert!((equirectangular_uv(front).x - equirectangular_uv(back).x).abs() > 0.3);
     }
 
+    /// What [`Shape::leaving`] promises, for the offset origins rays really start from: a
+    /// ray leaving a flat shape on either side, or a convex one through its outside, never
+    /// meets the shape again. Rays leaving a solid inward do (so the test can fail), and a
+    /// mesh promises nothing.
+    #[test]
+    fn rays_leaving_a_surface_outward_never_meet_it_again() {
+        use crate::math::{Rng, offset_ray_origin};
+        let mut rng = Rng::new(21);
+        let mut unit = |rng: &mut Rng| {
+            loop {
+                let v =
+                    Vec3A::new(rng.next_f32(), rng.next_f32(), rng.next_f32()) * 2.0 - Vec3A::ONE;
+                if (0.01..=1.0).contains(&v.length_squared()) {
+                    return v.normalize();
+                }
+            }
+        };
+        let (p0, axis) = (Vec3A::new(0.3, -0.2, 0.1), Vec3A::new(0.2, 1.0, -0.3));
+        let shapes = [
+            Shape::Sphere(Sphere {
+                center: p0,
+                radius: 1.3,
+            }),
+            Shape::Cuboid(Cuboid {
+                min: Vec3A::new(-1.0, -0.5, -0.7),
+                max: Vec3A::new(0.8, 1.1, 0.9),
+            }),
+            Shape::Cylinder(Cylinder::new(p0, axis, 0.9, 1.7, true)),
+            Shape::Cylinder(Cylinder::new(p0, axis, 0.9, 1.7, false)),
+            Shape::Cone(Cone::new(p0, axis, 1.1, 1.5, true)),
+            Shape::Cone(Cone::new(p0, axis, 1.1, 1.5, false)),
+            Shape::Disk(Disk::new(p0, axis, 1.2)),
+            Shape::Rect(
+                Rect::new(p0, Vec3A::new(1.5, 0.2, 0.0), Vec3A::new(0.0, 0.3, 1.4)).unwrap(),
+            ),
+            Shape::Triangle(
+                Triangle::new(
+                    p0,
+                    p0 + Vec3A::new(1.5, 0.2, 0.0),
+                    p0 + Vec3A::new(0.0, 0.3, 1.4),
+                )
+                .unwrap(),
+            ),
+            Shape::Plane(Plane::new(p0, axis)),
+        ];
+        for shape in &shapes {
+            let leaving = shape.leaving();
+            assert_ne!(leaving, Leaving::MayReturn, "{}", shape.kind());
+            let (mut hits, mut back_inside) = (0, 0);
+            for _ in 0..3000 {
+                let eye = p0 + unit(&mut rng) * 6.0;
+                let target = p0 + unit(&mut rng) * 0.8;
+                let Some(h) =
+                    shape.intersect(&Ray::new(eye, (target - eye).normalize()), f32::INFINITY)
+                else {
+                    continue;
+                };
+                hits += 1;
+                let s = shape.surface(eye + (target - eye).normalize() * h.t, &h, false);
+                for side in [1.0f32, -1.0] {
+                    let n = s.normal * side;
+                    let mut dir = unit(&mut rng);
+                    if dir.dot(n) < 0.0 {
+                        dir = -dir;
+                    }
+                    if dir.dot(n) < 1e-3 {
+                        continue;
+                    }
+                    let again = shape
+                        .intersect(&Ray::new(offset_ray_origin(s.point, n), dir), f32::INFINITY);
+                    let promised = leaving == Leaving::EitherSide || side > 0.0;
+                    if promised {
+                        assert!(again.is_none(), "{} met again: {again:?}", shape.kind());
+                    } else if again.is_some() {
+                        back_inside += 1;
+                    }
+                }
+            }
+            assert!(hits > 300, "{}: {hits} hits", shape.kind());
+            if leaving == Leaving::Outside {
+                assert!(
+                    back_inside > 100,
+                    "{}: {back_inside} inward rays met it",
+                    shape.kind()
+                );
+            }
+        }
+        let (mesh, _) = Mesh::new(mesh::MeshInput {
+            positions: vec![glam::Vec3::ZERO, glam::Vec3::X, glam::Vec3::Y],
+            triangles: vec![[0, 1, 2]],
+            ..Default::default()
+        })
+        .unwrap();
+        assert_eq!(
+            Shape::Mesh(std::sync::Arc::new(mesh)).leaving(),
+            Leaving::MayReturn
+        );
+    }
+
     #[test]
     fn quadratic_is_stable() {
         let (t0, t1) = solve_quadratic(1.0, -1e4, 1.0).unwrap(); // t^2 - 2e4 t + 1
