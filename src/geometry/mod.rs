@@ -403,7 +403,7 @@ mod tests {
     fn rays_leaving_a_surface_outward_never_meet_it_again() {
         use crate::math::{Rng, offset_ray_origin};
         let mut rng = Rng::new(21);
-        let mut unit = |rng: &mut Rng| {
+        let unit = |rng: &mut Rng| {
             loop {
                 let v =
                     Vec3A::new(rng.next_f32(), rng.next_f32(), rng.next_f32()) * 2.0 - Vec3A::ONE;
