@@ -713,7 +713,7 @@ mod tests {
                 let dir_in = (to - eye).normalize();
                 let outward = dir_in.dot(hit.normal) < 0.0;
                 let n = if outward { hit.normal } else { -hit.normal };
-                // Back the way it came (a side the ray surely is on), then a random way.
+                // A random direction on the side the ray arrived from.
                 let mut d = (in_unit_cube(&mut rng) * 2.0 - Vec3A::ONE).normalize_or(n);
                 if d.dot(n) < 0.0 {
                     d = -d;
