@@ -2,14 +2,16 @@
 //! it can be compared with another tracer on the very same rays (bench/vs-embree.sh).
 //!
 //! ```text
-//! cargo run --release --example trace_rays -- MESH RAYS... [--threads N] [--repeats N]
+//! cargo run --release --example trace_rays -- MESH RAYS... [--threads N] [--repeats N] [--any]
 //! ```
 //!
 //! MESH is an OBJ or PLY file, placed as the only object of a scene (so rays go through the
 //! object BVH and the mesh's BVH, as when rendering). Each RAYS file is raw little-endian
 //! `f32`, six per ray: origin x y z, direction x y z. Each ray finds its closest hit in
 //! `(0, inf)`; the best of the repeats is reported with the hit count and the sum of the hit
-//! distances (to check that both tracers saw the same thing).
+//! distances (to check that both tracers saw the same thing). With `--any` each ray only asks
+//! whether it meets the mesh at all, as a shadow ray does (the walk stops at the first hit
+//! found; the t-sum is then 0).
 
 use rayon::prelude::*;
 use snell::math::{Ray, Vec3A};
@@ -32,6 +34,7 @@ fn run() -> Result<(), String> {
     let mut files: Vec<PathBuf> = vec![];
     let mut threads = None;
     let mut repeats = 3;
+    let mut any = false;
     let mut args = std::env::args().skip(1);
     while let Some(a) = args.next() {
         let mut number = |name: &str| -> Result<usize, String> {
@@ -42,11 +45,12 @@ fn run() -> Result<(), String> {
         match a.as_str() {
             "--threads" => threads = Some(number("--threads")?),
             "--repeats" => repeats = number("--repeats")?.max(1),
+            "--any" => any = true,
             _ => files.push(a.into()),
         }
     }
     if files.len() < 2 {
-        return Err("usage: trace_rays MESH RAYS... [--threads N] [--repeats N]".into());
+        return Err("usage: trace_rays MESH RAYS... [--threads N] [--repeats N] [--any]".into());
     }
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(threads.unwrap_or(0))
@@ -77,7 +81,7 @@ fn run() -> Result<(), String> {
         let mut summary = (0usize, 0f64);
         for _ in 0..repeats {
             let start = Instant::now();
-            summary = pool.install(|| trace(&scene, &rays));
+            summary = pool.install(|| trace(&scene, &rays, any));
             best = best.min(start.elapsed().as_secs_f64());
         }
         let name = f.file_stem().map_or("?".into(), |s| s.to_string_lossy());
@@ -149,13 +153,15 @@ fn read_rays(path: &Path) -> Result<Vec<Ray>, String> {
 }
 
 /// Closest hits of all rays, in parallel: (hits, sum of hit distances).
-fn trace(scene: &Scene, rays: &[Ray]) -> (usize, f64) {
+fn trace(scene: &Scene, rays: &[Ray], any: bool) -> (usize, f64) {
     rays.par_chunks(4096)
         .map(|chunk| {
             let mut hits = 0;
             let mut sum = 0.0;
             for r in chunk {
-                if let Some((_, h)) = scene.intersect(r, f32::INFINITY) {
+                if any {
+                    hits += scene.opaque_blocked(r, f32::INFINITY) as usize;
+                } else if let Some((_, h)) = scene.intersect(r, f32::INFINITY) {
                     hits += 1;
                     sum += h.t as f64;
                 }
