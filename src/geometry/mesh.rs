@@ -715,26 +715,17 @@ impl WideBvh {
                     let order = convert_to_i16_m256i_from_lower8_u8_m128i(set_i64_m128i_s(
                         (COMPACT[ranked as usize] ^ octant_bytes) as i64,
                     ));
-                    let children: [i32; 8] = shuffle_av_i32_all_m256i(
-                        load_unaligned_m256i(bytemuck::cast_ref(&node.child)),
-                        order,
-                    )
-                    .into();
-                    let dists = shuffle_av_i32_all_m256(near, order).to_array();
-                    kids[top..top + 8].copy_from_slice(&children.map(|c| c as u32));
-                    nears[top..top + 8].copy_from_slice(&dists);
+                    kids[top..top + 8].copy_from_slice(&packed_children(node, order));
+                    nears[top..top + 8]
+                        .copy_from_slice(&shuffle_av_i32_all_m256(near, order).to_array());
                     top += rest.count_ones() as usize;
                     current = node.child[slot];
                     continue;
                 }
                 // No child met: on to the stack.
             } else {
-                let first = current & FIRST_MASK;
-                let count = ((current & !LEAF) >> COUNT_SHIFT) + 1;
-                for prim in first..first + count {
-                    if visit.visit(prim, &mut t_max) {
-                        return;
-                    }
+                if visit_leaf(current, visit, &mut t_max) {
+                    return;
                 }
             }
             // Next: the nearest entry left that starts before the hit found so far.
@@ -782,23 +773,14 @@ impl WideBvh {
                     let order = convert_to_i16_m256i_from_lower8_u8_m128i(set_i64_m128i_s(
                         COMPACT[rest as usize & 255] as i64,
                     ));
-                    let children: [i32; 8] = shuffle_av_i32_all_m256i(
-                        load_unaligned_m256i(bytemuck::cast_ref(&node.child)),
-                        order,
-                    )
-                    .into();
-                    kids[top..top + 8].copy_from_slice(&children.map(|c| c as u32));
+                    kids[top..top + 8].copy_from_slice(&packed_children(node, order));
                     top += rest.count_ones() as usize;
                     current = node.child[mask.trailing_zeros() as usize & 7];
                     continue;
                 }
             } else {
-                let first = current & FIRST_MASK;
-                let count = ((current & !LEAF) >> COUNT_SHIFT) + 1;
-                for prim in first..first + count {
-                    if visit.visit(prim, &mut t_max) {
-                        return;
-                    }
+                if visit_leaf(current, visit, &mut t_max) {
+                    return;
                 }
             }
             if top == 0 {
@@ -866,12 +848,8 @@ impl WideBvh {
                     continue;
                 }
             } else {
-                let first = current & FIRST_MASK;
-                let count = ((current & !LEAF) >> COUNT_SHIFT) + 1;
-                for prim in first..first + count {
-                    if visit.visit(prim, &mut t_max) {
-                        return;
-                    }
+                if visit_leaf(current, visit, &mut t_max) {
+                    return;
                 }
             }
             // Next: the nearest entry left that starts before the hit found so far.
@@ -888,6 +866,28 @@ impl WideBvh {
             }
         }
     }
+}
+
+/// Tests the triangles of leaf reference `leaf`; true when `visit` stops the walk.
+#[inline(always)]
+fn visit_leaf(leaf: u32, visit: &mut impl Visit, t_max: &mut f32) -> bool {
+    let first = leaf & FIRST_MASK;
+    let count = ((leaf & !LEAF) >> COUNT_SHIFT) + 1;
+    for prim in first..first + count {
+        if visit.visit(prim, t_max) {
+            return true;
+        }
+    }
+    false
+}
+
+/// `node`'s children in the slots `order` names, lane by lane (the walks' pushes).
+#[cfg(all(target_arch = "x86_64", target_feature = "avx2"))]
+#[inline(always)]
+fn packed_children(node: &WideNode, order: safe_arch::m256i) -> [u32; 8] {
+    use safe_arch::*;
+    let children = load_unaligned_m256i(bytemuck::cast_ref(&node.child));
+    bytemuck::cast(<[i32; 8]>::from(shuffle_av_i32_all_m256i(children, order)))
 }
 
 /// For each eight-bit mask, the positions of its set bits in ascending order, one a byte
