@@ -1,14 +1,15 @@
-//! A triangle mesh: its own BVH over its triangles (obvhs's compressed eight-wide BVH, built
-//! by PLOC), watertight triangle tests, and per-vertex normals and uvs. A mesh is shared
+//! A triangle mesh: its own BVH over its triangles (obvhs's PLOC binary tree, collapsed into
+//! an eight-wide tree with leaves of up to four triangles tested at once: see `collapse`),
+//! watertight triangle tests, and per-vertex normals and uvs. A mesh is shared
 //! (`Arc`) by every object that places it, so a thousand instances cost one copy.
 
-use super::triangle::{RowRay, rows_of};
+use super::collapse::{BLOCK, TWO_BLOCKS, collapse};
+use super::triangle::{BlockRay, TriangleBlock};
 use super::{ShapeHit, Surface};
 use crate::accel::push_child;
 use crate::math::{Aabb, Ray, Vec2, Vec3, Vec3A};
 #[cfg(any(test, not(all(target_arch = "x86_64", target_feature = "avx"))))]
 use glam::Vec4;
-use obvhs::cwbvh::node::CwBvhNode;
 use std::time::{Duration, Instant};
 
 /// Most triangles one mesh may have (indices are `u32`; the BVH needs about 16 bytes and
@@ -33,12 +34,15 @@ pub struct MeshInput {
 /// A triangle mesh arranged for ray queries.
 #[derive(Debug, PartialEq)]
 pub struct Mesh {
-    /// Corner positions of each triangle, in BVH order (gathered, so a test reads one place),
-    /// as rows: the x of its corners a, b, c, then their y, then their z; one float of
-    /// padding at the end (see [`RowRay`]).
-    rows: Vec<f32>,
-    /// Vertex indices of each triangle, in BVH order (for normals and uvs).
+    /// The triangles' corners, a block of four for each leaf of the BVH, in the order the
+    /// leaves name them (gathered, so a leaf's test reads one place). Triangle `4 k + l` (a
+    /// hit's `prim`) is lane `l` of block `k`; a leaf of fewer than four repeats its last.
+    blocks: Vec<TriangleBlock>,
+    /// Vertex indices of each triangle, in the blocks' order, lanes repeated included (for
+    /// normals and uvs).
     faces: Vec<[u32; 3]>,
+    /// Number of triangles (not counting repeated lanes).
+    triangles: usize,
     normals: Vec<Vec3>,
     uvs: Vec<Vec2>,
     /// Material slot of each triangle, in BVH order, or empty.
@@ -121,33 +125,66 @@ impl Mesh {
             });
         }
         let start = Instant::now();
-        let cw = obvhs::cwbvh::builder::build_cwbvh(
+        // obvhs's binary tree (PLOC, then reinsertion: its `medium_build`), collapsed into
+        // an eight-wide tree with leaves of up to four triangles (see `collapse`).
+        let params = obvhs::BvhBuildParams::medium_build();
+        let mut bvh2 = obvhs::ploc::PlocBuilder::with_capacity(aabbs.len()).build(
+            params.ploc_search_distance,
             &aabbs,
-            obvhs::BvhBuildParams::medium_build(),
-            &mut Duration::default(),
+            (0..aabbs.len() as u32).collect(),
+            params.sort_precision,
+            params.search_depth_threshold,
         );
-        let bvh = WideBvh::from_cwbvh(&cw);
-        // Lay the triangles out in the order the BVH's leaves name them.
-        let order: Vec<usize> = cw
-            .primitive_indices
+        obvhs::bvh2::reinsertion::ReinsertionOptimizer::default().run(
+            &mut bvh2,
+            params.reinsertion_batch_ratio,
+            None,
+        );
+        let wide = collapse(&bvh2)?;
+        // Lay the triangles out in the order the BVH's leaves name them, four lanes a leaf.
+        let order: Vec<usize> = wide
+            .leaves
             .iter()
-            .map(|&p| kept[p as usize])
+            .flat_map(|leaf| {
+                (0..leaf.len().div_ceil(BLOCK) * BLOCK)
+                    .map(|l| kept[leaf[l.min(leaf.len() - 1)] as usize])
+            })
             .collect();
         let faces: Vec<[u32; 3]> = order.iter().map(|&i| triangles[i]).collect();
-        let mut rows = Vec::with_capacity(9 * faces.len() + 1);
-        for f in &faces {
-            rows.extend(rows_of(f.map(|k| positions[k as usize].into())));
-        }
-        rows.push(0.0);
+        let blocks = faces
+            .chunks_exact(BLOCK)
+            .map(|four| {
+                let corners: Vec<[Vec3A; 3]> = four
+                    .iter()
+                    .map(|f| f.map(|k| positions[k as usize].into()))
+                    .collect();
+                TriangleBlock::new(&corners)
+            })
+            .collect();
         let slots = if triangle_slots.is_empty() {
             vec![]
         } else {
             order.iter().map(|&i| triangle_slots[i]).collect()
         };
+        if std::env::var("STATS").is_ok() {
+            eprintln!(
+                "nodes {} leaves {} tris {} fill {:.2} depth {}",
+                wide.nodes.len(),
+                wide.leaves.len(),
+                kept.len(),
+                kept.len() as f64 / wide.leaves.len() as f64,
+                wide.depth
+            );
+        }
+        let bvh = WideBvh {
+            nodes: wide.nodes,
+            depth: wide.depth,
+        };
         Ok((
             Mesh {
-                rows,
+                blocks,
                 faces,
+                triangles: kept.len(),
                 normals,
                 uvs,
                 slots,
@@ -161,7 +198,7 @@ impl Mesh {
 
     /// Number of triangles (after dropping degenerate ones).
     pub fn triangle_count(&self) -> usize {
-        self.faces.len()
+        self.triangles
     }
 
     /// Whether the mesh has per-vertex normals (smooth shading).
@@ -181,7 +218,7 @@ impl Mesh {
 
     /// Bytes taken by the triangles, normals, uvs and slots.
     pub fn geometry_bytes(&self) -> usize {
-        self.rows.len() * 4
+        self.blocks.len() * std::mem::size_of::<TriangleBlock>()
             + self.faces.len() * 12
             + self.normals.len() * 12
             + self.uvs.len() * 8
@@ -204,7 +241,7 @@ impl Mesh {
     #[inline]
     pub fn intersect(&self, ray: &Ray, t_max: f32) -> Option<ShapeHit> {
         let mut closest = TriangleQuery::<false> {
-            rows: &self.rows,
+            blocks: &self.blocks,
             source: ray,
             ray: None,
             hit: None,
@@ -217,7 +254,7 @@ impl Mesh {
     #[inline]
     pub fn occluded(&self, ray: &Ray, t_max: f32) -> bool {
         let mut any = TriangleQuery::<true> {
-            rows: &self.rows,
+            blocks: &self.blocks,
             source: ray,
             ray: None,
             hit: None,
@@ -252,8 +289,7 @@ impl Mesh {
 
     /// The corners of triangle `prim` (in BVH order).
     fn corners(&self, prim: u32) -> [Vec3A; 3] {
-        let r = &self.rows[9 * prim as usize..][..9];
-        [0, 1, 2].map(|k| Vec3A::new(r[k], r[3 + k], r[6 + k]))
+        self.blocks[prim as usize / BLOCK].corners(prim as usize % BLOCK)
     }
 
     /// The vertex normals interpolated at a hit (unit, object space), when the mesh has them.
@@ -274,51 +310,74 @@ impl Mesh {
 /// What a BVH walk does with the triangles of the leaves it reaches. A trait rather than a
 /// closure, so that the triangle test is inlined into the walk.
 trait Visit {
-    /// Tests triangle `prim`, lowering `t_max` to a hit's distance; true stops the walk.
-    fn visit(&mut self, prim: u32, t_max: &mut f32) -> bool;
-    /// Asks the cache for triangle `prim`'s data, which will be tested soon.
-    fn prefetch(&self, prim: u32);
+    /// Tests the triangles of leaf `leaf`, lowering `t_max` to a hit's distance; true stops
+    /// the walk.
+    fn visit(&mut self, leaf: u32, t_max: &mut f32) -> bool;
+    /// Asks the cache for leaf `leaf`'s triangles, which will be tested soon.
+    fn prefetch(&self, leaf: u32);
 }
 
 /// A ray's query of a mesh's triangles: the nearest hit (`ANY` false), or any hit, the walk
 /// stopping at the first (`ANY` true).
 struct TriangleQuery<'a, const ANY: bool> {
-    rows: &'a [f32],
+    blocks: &'a [TriangleBlock],
     source: &'a Ray,
     /// The ray prepared for triangle tests, made at the first one: a ray that meets no
     /// leaf (one that misses the mesh, for a start) never pays for it.
-    ray: Option<RowRay>,
+    ray: Option<BlockRay>,
     hit: Option<ShapeHit>,
 }
 
 impl<const ANY: bool> Visit for TriangleQuery<'_, ANY> {
     #[inline(always)]
-    fn prefetch(&self, prim: u32) {
-        if let Some(first) = self.rows.get(9 * prim as usize) {
-            crate::math::prefetch(first);
+    fn prefetch(&self, leaf: u32) {
+        let first = (leaf & !TWO_BLOCKS) as usize;
+        if let Some(block) = self.blocks.get(first) {
+            block.prefetch();
+        }
+        if leaf & TWO_BLOCKS != 0
+            && let Some(block) = self.blocks.get(first + 1)
+        {
+            block.prefetch();
         }
     }
 
     #[inline(always)]
-    fn visit(&mut self, prim: u32, t_max: &mut f32) -> bool {
-        let source = self.source;
-        let ray = self.ray.get_or_insert_with(|| RowRay::new(source));
-        // Ten floats: the nine of the triangle and the one a row reads past them (the
-        // padding after the last).
-        let tri = self.rows[9 * prim as usize..]
-            .first_chunk::<10>()
-            .expect("a triangle's rows are followed by a float");
-        if let Some((t, u, v)) = ray.intersect(tri, *t_max) {
-            *t_max = t;
-            self.hit = Some(ShapeHit {
-                t,
-                part: 0,
-                prim,
-                bary: Vec2::new(u, v),
-            });
-            return ANY;
+    fn visit(&mut self, leaf: u32, t_max: &mut f32) -> bool {
+        let first = leaf & !TWO_BLOCKS;
+        if self.block(first, t_max) {
+            return true;
         }
-        false
+        leaf & TWO_BLOCKS != 0 && self.block(first + 1, t_max)
+    }
+}
+
+impl<const ANY: bool> TriangleQuery<'_, ANY> {
+    #[inline(always)]
+    fn block(&mut self, index: u32, t_max: &mut f32) -> bool {
+        let source = self.source;
+        let ray = self.ray.get_or_insert_with(|| BlockRay::new(source));
+        let Some(block) = self.blocks.get(index as usize) else {
+            return false;
+        };
+        let hits = ray.lanes(block, *t_max);
+        let Some((lane, (t, u, v))) = (if ANY && hits.mask != 0 {
+            // Any hit will do: the lowest lane's.
+            let lane = hits.mask.trailing_zeros() as usize;
+            Some((lane, hits.get(lane)))
+        } else {
+            hits.nearest()
+        }) else {
+            return false;
+        };
+        *t_max = t;
+        self.hit = Some(ShapeHit {
+            t,
+            part: 0,
+            prim: index * BLOCK as u32 + lane as u32,
+            bary: Vec2::new(u, v),
+        });
+        ANY
     }
 }
 
@@ -513,12 +572,8 @@ fn splat3(v: Vec3A) -> [Lanes; 3] {
     [v.x, v.y, v.z]
 }
 
-/// Marks a child reference as a leaf: `LEAF | (count - 1) << COUNT_SHIFT | first triangle`.
-const LEAF: u32 = 1 << 31;
-/// Where a leaf's triangle count (1 to 3, less one) sits in its reference.
-const COUNT_SHIFT: u32 = 29;
-/// The first-triangle bits of a leaf reference.
-const FIRST_MASK: u32 = (1 << COUNT_SHIFT) - 1;
+/// Marks a child reference as a leaf: `LEAF | k` for the mesh's `k`-th block of triangles.
+pub(crate) const LEAF: u32 = 1 << 31;
 
 /// A node of the eight-wide BVH: obvhs's compressed node with its child boxes decoded to
 /// floats and its children's references decoded once, at build time (decoding eight
@@ -550,33 +605,6 @@ impl WideNode {
         }
         self.child[i] = child;
     }
-
-    fn from_cw(n: &CwBvhNode) -> Self {
-        let mut node = WideNode::EMPTY;
-        for i in 0..8 {
-            let meta = n.child_meta[i];
-            if meta == 0 {
-                continue;
-            }
-            let b = n.child_aabb(i);
-            // Ylitie et al.'s encoding, as obvhs stores it: inner children have meta
-            // 0b001_11xxx (their slot, 24 to 31, in the low five bits); leaves hold their
-            // triangle count in unary in the top three bits and their first triangle's
-            // offset in the low five.
-            let child = if meta & 0b11000 == 0b11000 {
-                n.child_node_index(i)
-            } else {
-                let (first, count) = n.child_primitives(i);
-                LEAF | (count.clamp(1, 3) - 1) << COUNT_SHIFT | first
-            };
-            let bounds = Aabb {
-                min: b.min,
-                max: b.max,
-            };
-            node.set_child(i, &bounds, child);
-        }
-        node
-    }
 }
 
 /// The eight-wide BVH of a mesh, walked nearest child first.
@@ -588,26 +616,6 @@ struct WideBvh {
 }
 
 impl WideBvh {
-    fn from_cwbvh(cw: &obvhs::cwbvh::CwBvh) -> Self {
-        let nodes: Vec<WideNode> = cw.nodes.iter().map(WideNode::from_cw).collect();
-        // Depth, without recursion (a degenerate mesh can make a very deep tree).
-        let mut depth = 0;
-        let mut todo = vec![];
-        if !nodes.is_empty() {
-            todo.push((0u32, 1usize));
-        }
-        while let Some((i, d)) = todo.pop() {
-            depth = depth.max(d);
-            let n = &nodes[i as usize];
-            for (k, &c) in n.child.iter().enumerate() {
-                if c & LEAF == 0 && n.planes[0][0][k] <= n.planes[0][1][k] {
-                    todo.push((c, d + 1));
-                }
-            }
-        }
-        WideBvh { nodes, depth }
-    }
-
     /// Calls `visit.visit(triangle, t_max)` for every triangle whose leaf box the ray meets before
     /// `t_max` (which `visit` may lower); `visit` returns true to stop. `ORDERED`: nearer
     /// children first (closest-hit queries); otherwise in the order found (any-hit queries).
@@ -832,7 +840,7 @@ impl WideBvh {
                             // Its triangles are tested after the nearer children: start
                             // fetching them now (random rays through the bunny miss the
                             // cache there most).
-                            visit.prefetch(child & FIRST_MASK);
+                            visit.prefetch(child & !LEAF);
                         } else if let Some(n) = self.nodes.get(child as usize) {
                             // So are an inner node's boxes and children: its four cache
                             // lines too (random rays through the bunny: 4 to 11 % faster).
@@ -871,14 +879,7 @@ impl WideBvh {
 /// Tests the triangles of leaf reference `leaf`; true when `visit` stops the walk.
 #[inline(always)]
 fn visit_leaf(leaf: u32, visit: &mut impl Visit, t_max: &mut f32) -> bool {
-    let first = leaf & FIRST_MASK;
-    let count = ((leaf & !LEAF) >> COUNT_SHIFT) + 1;
-    for prim in first..first + count {
-        if visit.visit(prim, t_max) {
-            return true;
-        }
-    }
-    false
+    visit.visit(leaf & !LEAF, t_max)
 }
 
 /// `node`'s children in the slots `order` names, lane by lane (the walks' pushes).
@@ -969,6 +970,7 @@ pub fn area_weighted_normals(positions: &[Vec3], triangles: &[[u32; 3]]) -> Vec<
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::geometry::triangle::WatertightRay;
     use crate::math::Rng;
 
     /// The node test (the AVX one or the portable one, whichever this build has) against
@@ -1106,19 +1108,25 @@ mod tests {
         }
     }
 
-    /// The mesh's triangle test over rows gives what the scalar watertight test gives, for
+    /// The test of four triangles at once gives, lane by lane, what the scalar watertight test gives, for
     /// rays in every direction (so every choice of axes and winding) and rays aimed at
     /// corners and edges, where the test falls back to double precision.
     #[test]
-    fn row_test_agrees_with_the_scalar_watertight_test() {
-        use super::super::triangle::WatertightRay;
+    fn block_test_agrees_with_the_scalar_watertight_test() {
         let mut rng = Rng::new(11);
         let mut r = |lo: f32, hi: f32| lo + (hi - lo) * rng.next_f32();
         for case in 0..5000 {
             let corners: [Vec3A; 3] =
                 std::array::from_fn(|_| Vec3A::new(r(-1.0, 1.0), r(-1.0, 1.0), r(-1.0, 1.0)));
-            let mut tri = [0.0f32; 10];
-            tri[..9].copy_from_slice(&rows_of(corners));
+            // The triangle in lane `case % 4` of a block whose other lanes are random.
+            let lane = case % 4;
+            let mut four: Vec<[Vec3A; 3]> = (0..4)
+                .map(|_| {
+                    std::array::from_fn(|_| Vec3A::new(r(-1.0, 1.0), r(-1.0, 1.0), r(-1.0, 1.0)))
+                })
+                .collect();
+            four[lane] = corners;
+            let block = TriangleBlock::new(&four);
             let origin = Vec3A::new(r(-3.0, 3.0), r(-3.0, 3.0), r(-3.0, 3.0));
             // Aimed at a corner, a point on an edge, or anywhere near the triangle.
             let (a, b) = (case % 3, (case + 1) % 3);
@@ -1138,9 +1146,26 @@ mod tests {
             };
             let scalar =
                 WatertightRay::new(&ray).intersect(corners[0], corners[1], corners[2], t_max);
-            let rows = RowRay::new(&ray).intersect(&tri, t_max);
+            let hits = BlockRay::new(&ray).lanes(&block, t_max);
+            let lanes = (hits.mask & (1 << lane) != 0).then(|| hits.get(lane));
             // `==` on floats, so a zero weight may differ in sign only.
-            assert_eq!(rows, scalar, "case {case}");
+            assert_eq!(lanes, scalar, "case {case}");
+            // The nearest lane is the nearest of the four tested one by one.
+            let one_by_one = (0..4)
+                .filter_map(|l| {
+                    let [a, b, c] = block.corners(l);
+                    WatertightRay::new(&ray)
+                        .intersect(a, b, c, t_max)
+                        .map(|h| (l, h))
+                })
+                .fold(
+                    None,
+                    |best: Option<(usize, (f32, f32, f32))>, h| match best {
+                        Some(b) if b.1.0 <= h.1.0 => Some(b),
+                        _ => Some(h),
+                    },
+                );
+            assert_eq!(hits.nearest(), one_by_one, "case {case}");
         }
     }
 
@@ -1354,12 +1379,12 @@ mod tests {
             }
             let ray = Ray::new(o, d);
             // Every triangle, one by one, with the same test the walks use.
-            let rows = RowRay::new(&ray);
+            let scalar = WatertightRay::new(&ray);
             let mut nearest: Option<(f32, u32)> = None;
-            for p in 0..m.triangle_count() as u32 {
+            for p in 0..m.faces.len() as u32 {
                 let limit = nearest.map_or(f32::INFINITY, |n| n.0);
-                let tri = m.rows[9 * p as usize..].first_chunk::<10>().unwrap();
-                if let Some((t, _, _)) = rows.intersect(tri, limit) {
+                let [a, b, c] = m.corners(p);
+                if let Some((t, _, _)) = scalar.intersect(a, b, c, limit) {
                     nearest = Some((t, p));
                 }
             }
@@ -1367,7 +1392,7 @@ mod tests {
             assert_eq!(found, nearest, "{ray:?}");
             // The portable walks (the only ones in builds without AVX2) agree too.
             let mut query = TriangleQuery::<false> {
-                rows: &m.rows,
+                blocks: &m.blocks,
                 source: &ray,
                 ray: None,
                 hit: None,
@@ -1376,7 +1401,7 @@ mod tests {
                 .walk_with::<true, 160>(&ray, f32::INFINITY, &mut query, &mut []);
             assert_eq!(query.hit.map(|h| (h.t, h.prim)), nearest, "{ray:?}");
             let mut any = TriangleQuery::<true> {
-                rows: &m.rows,
+                blocks: &m.blocks,
                 source: &ray,
                 ray: None,
                 hit: None,

@@ -1,6 +1,6 @@
 use super::{ShapeHit, Surface};
 use crate::math::{Aabb, Ray, Vec2, Vec3A};
-use glam::{Mat3A, Vec4, Vec4Swizzles};
+use glam::{BVec4A, Mat3A, Vec4};
 
 /// A ray prepared for the watertight ray-triangle test of Woop, Benthin and Wald (JCGT
 /// 2013): translated to the origin and sheared so that it runs along +z. Two triangles that
@@ -35,22 +35,105 @@ fn shear_of(ray: &Ray) -> ([usize; 3], [f32; 3]) {
     ([kx, ky, kz], [d[kx] / d[kz], d[ky] / d[kz], 1.0 / d[kz]])
 }
 
-/// The watertight test for triangles stored as rows, nine floats each: the x of the
-/// corners a, b, c, then their y, then their z (given with the next float, since a row is
-/// read as four). The three corners go through the shear
-/// together, and the three edge functions come out of one vector product; the values are
-/// those of [`WatertightRay::intersect`], operation for operation.
+/// Four triangles for [`BlockRay`], coordinate by coordinate: `v[axis][corner]` holds that
+/// coordinate of corner a, b or c of each of the four triangles, one a lane. A leaf of fewer
+/// triangles repeats its last in the lanes left over (a copy never wins a tie: the lowest
+/// lane does).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct TriangleBlock {
+    v: [[Vec4; 3]; 3],
+}
+
+impl TriangleBlock {
+    /// The block of `tris` (corners a, b, c of each), one to four of them.
+    pub(crate) fn new(tris: &[[Vec3A; 3]]) -> Self {
+        assert!(
+            (1..=4).contains(&tris.len()),
+            "a block holds 1 to 4 triangles"
+        );
+        let lane = |l: usize| &tris[l.min(tris.len() - 1)];
+        TriangleBlock {
+            v: std::array::from_fn(|axis| {
+                std::array::from_fn(|corner| {
+                    Vec4::from_array(std::array::from_fn(|l| lane(l)[corner][axis]))
+                })
+            }),
+        }
+    }
+
+    /// Asks the cache for the block's 144 bytes: three addresses 64 bytes apart cover the
+    /// three cache lines (at most) it spans.
+    #[inline(always)]
+    pub(crate) fn prefetch(&self) {
+        crate::math::prefetch(&self.v[0][0]);
+        crate::math::prefetch(&self.v[1][1]);
+        crate::math::prefetch(&self.v[2][2]);
+    }
+
+    /// The corners a, b, c of the triangle in `lane` (0 to 3).
+    pub(crate) fn corners(&self, lane: usize) -> [Vec3A; 3] {
+        let at = |axis: usize, corner: usize| self.v[axis][corner].to_array()[lane & 3];
+        [0, 1, 2].map(|c| Vec3A::new(at(0, c), at(1, c), at(2, c)))
+    }
+}
+
+/// The watertight test for four triangles at once ([`TriangleBlock`]): each lane does the
+/// operations of [`WatertightRay::intersect`] in the same order, so it gives the same hits,
+/// to the bit.
 #[derive(Clone, Copy, Debug)]
-pub(crate) struct RowRay {
-    /// Where the rows that become the sheared x, y and z start: `3 * kx`, `3 * ky`, `3 * kz`.
-    rows: [usize; 3],
+pub(crate) struct BlockRay {
+    /// The axes `kx`, `ky`, `kz`.
+    k: [usize; 3],
     /// The origin's coordinates along `kx`, `ky`, `kz`, each in every lane.
     origin: [Vec4; 3],
     /// `sx`, `sy`, `sz`, each in every lane.
     shear: [Vec4; 3],
 }
 
-impl RowRay {
+/// A block's hits, lane by lane ([`BlockRay::lanes`]).
+pub(crate) struct BlockHits {
+    /// A bit per lane hit in `(0, t_max)`.
+    pub(crate) mask: u32,
+    hit: BVec4A,
+    t: Vec4,
+    /// `1 / det`, and the edge functions of b and c (`v`, `w`): the weights are their
+    /// products.
+    inv: Vec4,
+    v: Vec4,
+    w: Vec4,
+}
+
+impl BlockHits {
+    /// The hit in `lane`: `(t, weight of b, weight of c)`, as [`WatertightRay::intersect`]
+    /// gives it.
+    pub(crate) fn get(&self, lane: usize) -> (f32, f32, f32) {
+        let l = lane & 3;
+        let inv = self.inv.to_array()[l];
+        (
+            self.t.to_array()[l],
+            self.v.to_array()[l] * inv,
+            self.w.to_array()[l] * inv,
+        )
+    }
+
+    /// The nearest hit: its lane and `(t, weight of b, weight of c)`; of equal distances,
+    /// the lowest lane's, as testing the lanes one after the other finds.
+    #[inline(always)]
+    pub(crate) fn nearest(&self) -> Option<(usize, (f32, f32, f32))> {
+        if self.mask == 0 {
+            return None;
+        }
+        let lane = if self.mask & (self.mask - 1) == 0 {
+            self.mask.trailing_zeros() as usize
+        } else {
+            let t = Vec4::select(self.hit, self.t, Vec4::INFINITY);
+            (t.cmpeq(Vec4::splat(t.min_element())).bitmask() & self.mask).trailing_zeros() as usize
+        };
+        Some((lane, self.get(lane)))
+    }
+}
+
+impl BlockRay {
     /// Prepares `ray` (any non-zero direction).
     #[inline]
     pub(crate) fn new(ray: &Ray) -> Self {
@@ -58,46 +141,70 @@ impl RowRay {
         // An array, not the vector: indexing a glam vector by a variable is a `match`, three
         // branches that random directions mispredict.
         let o = ray.origin.to_array();
-        RowRay {
-            rows: k.map(|k| 3 * k),
+        BlockRay {
+            k,
             origin: k.map(|k| Vec4::splat(o[k])),
             shear: s.map(Vec4::splat),
         }
     }
 
-    /// Hit of the triangle whose rows start `tri` with `0 < t < t_max`: `(t, weight of b,
-    /// weight of c)`.
+    /// The four triangles' hits with `0 < t < t_max`.
     #[inline(always)]
-    pub(crate) fn intersect(&self, tri: &[f32; 10], t_max: f32) -> Option<(f32, f32, f32)> {
-        // (`min(6)` changes nothing, the starts being 0, 3 or 6, but lets the compiler drop
-        // two bounds checks per row.)
-        let row = |k: usize| Vec4::from_slice(&tri[self.rows[k].min(6)..]) - self.origin[k];
-        // (a, b, c, -) of each sheared coordinate; the fourth lane is the next row's first
-        // float, never read below.
-        let z = row(2);
-        let x = row(0) - self.shear[0] * z;
-        let y = row(1) - self.shear[1] * z;
-        let z = self.shear[2] * z;
-        // (u, v, w) = (c.x b.y - c.y b.x, a.x c.y - a.y c.x, b.x a.y - b.y a.x).
-        let mut e = x.zxyw() * y.yzxw() - y.zxyw() * x.yzxw();
-        if e.cmpeq(Vec4::ZERO).bitmask() & 0b111 != 0 {
-            // On (or within rounding of) an edge: decide in double precision, as the
-            // scalar test does.
-            e = Vec4::new(
-                exact_edge(x.z, y.y, y.z, x.y),
-                exact_edge(x.x, y.z, y.x, x.z),
-                exact_edge(x.y, y.x, y.y, x.x),
-                0.0,
-            );
+    pub(crate) fn lanes(&self, block: &TriangleBlock, t_max: f32) -> BlockHits {
+        let [kx, ky, kz] = self.k.map(|k| k.min(2));
+        let [ox, oy, oz] = self.origin;
+        let [sx, sy, sz] = self.shear;
+        // Each corner translated and sheared: (x - sx z, y - sy z, sz z).
+        let corner = |c: usize| {
+            let z = block.v[kz][c] - oz;
+            (
+                (block.v[kx][c] - ox) - sx * z,
+                (block.v[ky][c] - oy) - sy * z,
+                sz * z,
+            )
+        };
+        let (ax, ay, az) = corner(0);
+        let (bx, by, bz) = corner(1);
+        let (cx, cy, cz) = corner(2);
+        let mut u = cx * by - cy * bx;
+        let mut v = ax * cy - ay * cx;
+        let mut w = bx * ay - by * ax;
+        let zero = (u.cmpeq(Vec4::ZERO) | v.cmpeq(Vec4::ZERO) | w.cmpeq(Vec4::ZERO)).bitmask();
+        if zero != 0 {
+            // A lane on (or within rounding of) an edge: decided in double precision, as
+            // the scalar test does.
+            let [ax, ay, bx, by, cx, cy] = [ax, ay, bx, by, cx, cy].map(|c| c.to_array());
+            let (mut uu, mut vv, mut ww) = (u.to_array(), v.to_array(), w.to_array());
+            for l in 0..4 {
+                if zero & (1 << l) != 0 {
+                    uu[l] = exact_edge(cx[l], by[l], cy[l], bx[l]);
+                    vv[l] = exact_edge(ax[l], cy[l], ay[l], cx[l]);
+                    ww[l] = exact_edge(bx[l], ay[l], by[l], ax[l]);
+                }
+            }
+            (u, v, w) = (uu.into(), vv.into(), ww.into());
         }
-        let negative = e.cmplt(Vec4::ZERO).bitmask() & 0b111 != 0;
-        let positive = e.cmpgt(Vec4::ZERO).bitmask() & 0b111 != 0;
-        if negative & positive {
-            return None;
+        let negative = u.cmplt(Vec4::ZERO) | v.cmplt(Vec4::ZERO) | w.cmplt(Vec4::ZERO);
+        let positive = u.cmpgt(Vec4::ZERO) | v.cmpgt(Vec4::ZERO) | w.cmpgt(Vec4::ZERO);
+        let det = u + v + w;
+        let t_scaled = u * az + v * bz + w * cz;
+        // `finish`'s tests, lane by lane: t = t_scaled / det in (0, t_max), compared before
+        // dividing (a NaN fails them all).
+        let limit = det * t_max;
+        let ahead = (det.cmpgt(Vec4::ZERO) & t_scaled.cmpgt(Vec4::ZERO) & t_scaled.cmplt(limit))
+            | (det.cmplt(Vec4::ZERO) & t_scaled.cmplt(Vec4::ZERO) & t_scaled.cmpgt(limit));
+        let inv = Vec4::ONE / det;
+        let t = t_scaled * inv;
+        let hit =
+            ahead & !(negative & positive) & t.cmpgt(Vec4::ZERO) & t.cmplt(Vec4::splat(t_max));
+        BlockHits {
+            mask: hit.bitmask(),
+            hit,
+            t,
+            inv,
+            v,
+            w,
         }
-        let det = e.x + e.y + e.z;
-        let p = e * z;
-        finish(det, p.x + p.y + p.z, e.y, e.z, t_max)
     }
 }
 
@@ -175,12 +282,6 @@ fn finish(det: f32, t_scaled: f32, v: f32, w: f32, t_max: f32) -> Option<(f32, f
     let inv = 1.0 / det;
     let t = t_scaled * inv;
     (t > 0.0 && t < t_max).then_some((t, v * inv, w * inv))
-}
-
-/// The nine floats of a triangle as [`RowRay`] reads them: the x of corners `a`, `b`, `c`,
-/// then their y, then their z.
-pub(crate) fn rows_of(corners: [Vec3A; 3]) -> [f32; 9] {
-    std::array::from_fn(|i| corners[i % 3][i / 3])
 }
 
 /// A triangle with corners `a`, `b`, `c`; its front side is `(b - a) x (c - a)`
