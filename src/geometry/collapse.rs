@@ -16,21 +16,16 @@ use super::mesh::{LEAF, WideNode};
 use crate::math::{Aabb, Vec3A};
 use obvhs::bvh2::Bvh2;
 
-/// Most triangles in a leaf: one four-lane block (two blocks, eight triangles, measured no
-/// faster on the bunny and the teapot).
+/// Most triangles in a leaf: one four-lane block (leaves of two blocks, eight triangles,
+/// measured no faster on the bunny and the teapot).
 pub(crate) const LEAF_SIZE: usize = 4;
-/// Triangles in a block.
-pub(crate) const BLOCK: usize = 4;
-/// Marks a leaf reference whose leaf has two blocks (the one named and the next).
-pub(crate) const TWO_BLOCKS: u32 = 1 << 30;
 
 /// What the walk pays to test a node's eight boxes, in the units of the SAH (per unit of a
 /// box's half area).
 const NODE_COST: f32 = 1.0;
-/// What it pays to test a leaf's block of up to four triangles, in the same units.
+/// What it pays to test a leaf's block of up to four triangles, in the same units (0.4 to
+/// 2.4 made no measurable difference).
 const LEAF_COST: f32 = 0.8;
-/// Each block of a leaf past its first adds this share of [`LEAF_COST`].
-const MORE_BLOCKS: f32 = 0.5;
 
 /// The eight-wide tree: nodes (the root first) and, per leaf, its triangles (indices into
 /// the primitives the binary tree was built over; a leaf reference `LEAF | k` names the
@@ -40,8 +35,6 @@ pub(crate) struct Collapsed {
     pub(crate) leaves: Vec<Vec<u32>>,
     /// Levels of nodes, the root included.
     pub(crate) depth: usize,
-    /// Blocks of four triangles the leaves take in all.
-    pub(crate) blocks: u32,
 }
 
 /// How a binary node stands for its subtree when it may take `i` slots of its parent.
@@ -61,14 +54,11 @@ enum Choice {
 /// built that way), never panics.
 pub(crate) fn collapse(bvh2: &Bvh2) -> Result<Collapsed, String> {
     let nodes = &bvh2.nodes;
-    let leaf_cost =
-        |n: u32| LEAF_COST * (1.0 + MORE_BLOCKS * ((n as usize).div_ceil(BLOCK) - 1) as f32);
     if nodes.is_empty() {
         return Ok(Collapsed {
             nodes: vec![WideNode::EMPTY],
             leaves: vec![],
             depth: 1,
-            blocks: 0,
         });
     }
     let n = nodes.len();
@@ -99,7 +89,7 @@ pub(crate) fn collapse(bvh2: &Bvh2) -> Result<Collapsed, String> {
                 ));
             }
             count[m] = node.prim_count;
-            cost[m] = [area * leaf_cost(node.prim_count); 8];
+            cost[m] = [area * LEAF_COST; 8];
             continue;
         }
         let (l, r) = (node.first_index as usize, node.first_index as usize + 1);
@@ -113,7 +103,7 @@ pub(crate) fn collapse(bvh2: &Bvh2) -> Result<Collapsed, String> {
         let (spread, k) = split(8);
         let as_node = (area * NODE_COST + spread, Choice::Node { k });
         let as_leaf = if count[m] as usize <= LEAF_SIZE {
-            area * leaf_cost(count[m])
+            area * LEAF_COST
         } else {
             f32::INFINITY
         };
@@ -142,7 +132,6 @@ pub(crate) fn collapse(bvh2: &Bvh2) -> Result<Collapsed, String> {
         nodes: vec![WideNode::EMPTY],
         leaves: vec![],
         depth: 1,
-        blocks: 0,
     };
     // (binary node, its wide node, that node's level)
     let mut todo = vec![];
@@ -199,11 +188,8 @@ impl Collapsed {
                 );
             }
         }
-        let first = self.blocks;
-        let n = prims.len().div_ceil(BLOCK) as u32;
-        self.blocks += n;
         self.leaves.push(prims);
-        LEAF | if n > 1 { TWO_BLOCKS } else { 0 } | first
+        LEAF | (self.leaves.len() - 1) as u32
     }
 }
 

@@ -3,7 +3,7 @@
 //! watertight triangle tests, and per-vertex normals and uvs. A mesh is shared
 //! (`Arc`) by every object that places it, so a thousand instances cost one copy.
 
-use super::collapse::{BLOCK, TWO_BLOCKS, collapse};
+use super::collapse::{LEAF_SIZE, collapse};
 use super::triangle::{BlockRay, TriangleBlock};
 use super::{ShapeHit, Surface};
 use crate::accel::push_child;
@@ -145,20 +145,15 @@ impl Mesh {
         let order: Vec<usize> = wide
             .leaves
             .iter()
-            .flat_map(|leaf| {
-                (0..leaf.len().div_ceil(BLOCK) * BLOCK)
-                    .map(|l| kept[leaf[l.min(leaf.len() - 1)] as usize])
-            })
+            .flat_map(|leaf| (0..LEAF_SIZE).map(|l| kept[leaf[l.min(leaf.len() - 1)] as usize]))
             .collect();
         let faces: Vec<[u32; 3]> = order.iter().map(|&i| triangles[i]).collect();
         let blocks = faces
-            .chunks_exact(BLOCK)
+            .chunks_exact(LEAF_SIZE)
             .map(|four| {
-                let corners: Vec<[Vec3A; 3]> = four
-                    .iter()
-                    .map(|f| f.map(|k| positions[k as usize].into()))
-                    .collect();
-                TriangleBlock::new(&corners)
+                TriangleBlock::new(&std::array::from_fn(|l| {
+                    four[l].map(|k| positions[k as usize].into())
+                }))
             })
             .collect();
         let slots = if triangle_slots.is_empty() {
@@ -166,16 +161,6 @@ impl Mesh {
         } else {
             order.iter().map(|&i| triangle_slots[i]).collect()
         };
-        if std::env::var("STATS").is_ok() {
-            eprintln!(
-                "nodes {} leaves {} tris {} fill {:.2} depth {}",
-                wide.nodes.len(),
-                wide.leaves.len(),
-                kept.len(),
-                kept.len() as f64 / wide.leaves.len() as f64,
-                wide.depth
-            );
-        }
         let bvh = WideBvh {
             nodes: wide.nodes,
             depth: wide.depth,
@@ -289,7 +274,7 @@ impl Mesh {
 
     /// The corners of triangle `prim` (in BVH order).
     fn corners(&self, prim: u32) -> [Vec3A; 3] {
-        self.blocks[prim as usize / BLOCK].corners(prim as usize % BLOCK)
+        self.blocks[prim as usize / LEAF_SIZE].corners(prim as usize % LEAF_SIZE)
     }
 
     /// The vertex normals interpolated at a hit (unit, object space), when the mesh has them.
@@ -331,33 +316,16 @@ struct TriangleQuery<'a, const ANY: bool> {
 impl<const ANY: bool> Visit for TriangleQuery<'_, ANY> {
     #[inline(always)]
     fn prefetch(&self, leaf: u32) {
-        let first = (leaf & !TWO_BLOCKS) as usize;
-        if let Some(block) = self.blocks.get(first) {
-            block.prefetch();
-        }
-        if leaf & TWO_BLOCKS != 0
-            && let Some(block) = self.blocks.get(first + 1)
-        {
+        if let Some(block) = self.blocks.get(leaf as usize) {
             block.prefetch();
         }
     }
 
     #[inline(always)]
     fn visit(&mut self, leaf: u32, t_max: &mut f32) -> bool {
-        let first = leaf & !TWO_BLOCKS;
-        if self.block(first, t_max) {
-            return true;
-        }
-        leaf & TWO_BLOCKS != 0 && self.block(first + 1, t_max)
-    }
-}
-
-impl<const ANY: bool> TriangleQuery<'_, ANY> {
-    #[inline(always)]
-    fn block(&mut self, index: u32, t_max: &mut f32) -> bool {
         let source = self.source;
         let ray = self.ray.get_or_insert_with(|| BlockRay::new(source));
-        let Some(block) = self.blocks.get(index as usize) else {
+        let Some(block) = self.blocks.get(leaf as usize) else {
             return false;
         };
         let hits = ray.lanes(block, *t_max);
@@ -374,7 +342,7 @@ impl<const ANY: bool> TriangleQuery<'_, ANY> {
         self.hit = Some(ShapeHit {
             t,
             part: 0,
-            prim: index * BLOCK as u32 + lane as u32,
+            prim: leaf * LEAF_SIZE as u32 + lane as u32,
             bary: Vec2::new(u, v),
         });
         ANY
@@ -575,9 +543,9 @@ fn splat3(v: Vec3A) -> [Lanes; 3] {
 /// Marks a child reference as a leaf: `LEAF | k` for the mesh's `k`-th block of triangles.
 pub(crate) const LEAF: u32 = 1 << 31;
 
-/// A node of the eight-wide BVH: obvhs's compressed node with its child boxes decoded to
-/// floats and its children's references decoded once, at build time (decoding eight
-/// quantised boxes per node visit cost more than reading the larger node). The object BVH's
+/// A node of the eight-wide BVH, made by `collapse`: its children's boxes as floats and
+/// their references (decoding obvhs's eight quantised boxes per node visit cost more than
+/// reading the larger node). The object BVH's
 /// flat layout of small scenes uses it too, its children naming objects.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[repr(C, align(32))]
@@ -616,7 +584,7 @@ struct WideBvh {
 }
 
 impl WideBvh {
-    /// Calls `visit.visit(triangle, t_max)` for every triangle whose leaf box the ray meets before
+    /// Calls `visit.visit(leaf, t_max)` for every leaf whose box the ray meets before
     /// `t_max` (which `visit` may lower); `visit` returns true to stop. `ORDERED`: nearer
     /// children first (closest-hit queries); otherwise in the order found (any-hit queries).
     #[inline(always)]
@@ -1120,11 +1088,9 @@ mod tests {
                 std::array::from_fn(|_| Vec3A::new(r(-1.0, 1.0), r(-1.0, 1.0), r(-1.0, 1.0)));
             // The triangle in lane `case % 4` of a block whose other lanes are random.
             let lane = case % 4;
-            let mut four: Vec<[Vec3A; 3]> = (0..4)
-                .map(|_| {
-                    std::array::from_fn(|_| Vec3A::new(r(-1.0, 1.0), r(-1.0, 1.0), r(-1.0, 1.0)))
-                })
-                .collect();
+            let mut four: [[Vec3A; 3]; 4] = std::array::from_fn(|_| {
+                std::array::from_fn(|_| Vec3A::new(r(-1.0, 1.0), r(-1.0, 1.0), r(-1.0, 1.0)))
+            });
             four[lane] = corners;
             let block = TriangleBlock::new(&four);
             let origin = Vec3A::new(r(-3.0, 3.0), r(-3.0, 3.0), r(-3.0, 3.0));

@@ -45,17 +45,12 @@ pub(crate) struct TriangleBlock {
 }
 
 impl TriangleBlock {
-    /// The block of `tris` (corners a, b, c of each), one to four of them.
-    pub(crate) fn new(tris: &[[Vec3A; 3]]) -> Self {
-        assert!(
-            (1..=4).contains(&tris.len()),
-            "a block holds 1 to 4 triangles"
-        );
-        let lane = |l: usize| &tris[l.min(tris.len() - 1)];
+    /// The block of `tris` (corners a, b, c of each), one a lane.
+    pub(crate) fn new(tris: &[[Vec3A; 3]; 4]) -> Self {
         TriangleBlock {
             v: std::array::from_fn(|axis| {
                 std::array::from_fn(|corner| {
-                    Vec4::from_array(std::array::from_fn(|l| lane(l)[corner][axis]))
+                    Vec4::from_array(std::array::from_fn(|l| tris[l][corner][axis]))
                 })
             }),
         }
