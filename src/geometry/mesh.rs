@@ -429,6 +429,14 @@ impl NodeRay {
         t_max: f32,
     ) -> (Lanes, Lanes) {
         use safe_arch::*;
+        #[cfg(all(target_feature = "avx2", target_feature = "fma"))]
+        if FUSED {
+            let (near, missed) = self.fused_hits(node, t_max);
+            return (
+                cast_to_m256_from_m256i(near),
+                cast_to_m256_from_m256i(bitandnot_m256i(missed, set_splat_i32_m256i(-1))),
+            );
+        }
         let slab = |axis: usize| {
             let side = self.near_side[axis] & 1;
             let planes = &node.planes[axis];
@@ -456,6 +464,63 @@ impl NodeRay {
         let far = min_m256(min_m256(f0, f1), min_m256(f2, set_splat_m256(t_max)));
         let met = cmp_op_mask_m256::<{ cmp_op!(LessEqualOrdered) }>(near, far);
         (near, met)
+    }
+
+    /// The mesh walks' node test, where the build has AVX2 and FMA: the entry distances
+    /// (as bits), and all ones in the lanes of the children *not* met.
+    ///
+    /// Each distance is one fused multiply-add from the start values made with the ray (4
+    /// cycles less than a subtraction then a multiplication, and the margin in them keeps
+    /// every box the ray meets: see `NodeRay::new`). The walks wait on this test at every
+    /// node, so the rest is done on the distances' bits, with integer operations of one
+    /// cycle where float ones take four: for floats that are not NaN (none arise: the
+    /// inverse is capped), the signed integer maximum of the bits of the near sides and of
+    /// 0 is the bits of their float maximum with 0, since non-negative floats order as their
+    /// bits do and negative ones are negative integers. The integer minimum of the far sides
+    /// and `t_max` is their float minimum when none is negative, and a negative float (not
+    /// always the least) when one is, so the box is missed exactly when the float test
+    /// misses it, but for a far side of -0, which the float test keeps only at a near
+    /// distance of 0 too: a box that ends at the ray's origin, which holds no hit at `t > 0`.
+    #[cfg(all(
+        target_arch = "x86_64",
+        target_feature = "avx2",
+        target_feature = "fma"
+    ))]
+    #[inline(always)]
+    pub(crate) fn fused_hits(
+        &self,
+        node: &WideNode,
+        t_max: f32,
+    ) -> (safe_arch::m256i, safe_arch::m256i) {
+        use safe_arch::*;
+        let slab = |axis: usize| {
+            let side = self.near_side[axis] & 1;
+            let planes = &node.planes[axis];
+            let n = m256::from_array(planes[side]);
+            let f = m256::from_array(planes[side ^ 1]);
+            (
+                cast_to_m256i_from_m256(fused_mul_add_m256(
+                    n,
+                    self.inv_dir[axis],
+                    self.start[0][axis],
+                )),
+                cast_to_m256i_from_m256(fused_mul_add_m256(
+                    f,
+                    self.inv_far[axis],
+                    self.start[1][axis],
+                )),
+            )
+        };
+        let ((n0, f0), (n1, f1), (n2, f2)) = (slab(0), slab(1), slab(2));
+        let near = max_i32_m256i(
+            max_i32_m256i(n0, n1),
+            max_i32_m256i(n2, set_splat_i32_m256i(0)),
+        );
+        let far = min_i32_m256i(
+            min_i32_m256i(f0, f1),
+            min_i32_m256i(f2, set_splat_i32_m256i(t_max.to_bits() as i32)),
+        );
+        (near, cmp_gt_mask_i32_m256i(near, far))
     }
 
     /// [`NodeRay::hits`] without AVX.
@@ -591,7 +656,11 @@ impl WideBvh {
     fn walk<const ORDERED: bool>(&self, ray: &Ray, t_max: f32, visit: &mut impl Visit) {
         // Each level pushes at most seven more entries than it pops. A stack sized for the
         // tree at hand: setting up a larger one costs every ray.
-        #[cfg(all(target_arch = "x86_64", target_feature = "avx2"))]
+        #[cfg(all(
+            target_arch = "x86_64",
+            target_feature = "avx2",
+            target_feature = "fma"
+        ))]
         if ORDERED {
             // Its pushes write eight entries, of which up to seven count.
             return match 7 * self.depth + 8 {
@@ -600,7 +669,11 @@ impl WideBvh {
                 n => self.walk_nearest::<0>(ray, t_max, visit, &mut vec![0; n], &mut vec![0.0; n]),
             };
         }
-        #[cfg(all(target_arch = "x86_64", target_feature = "avx2"))]
+        #[cfg(all(
+            target_arch = "x86_64",
+            target_feature = "avx2",
+            target_feature = "fma"
+        ))]
         if !ORDERED {
             return match 7 * self.depth + 8 {
                 0..=64 => self.walk_any::<64>(ray, t_max, visit, &mut []),
@@ -628,7 +701,11 @@ impl WideBvh {
     /// a mask names), farthest first by the order obvhs gives a node's slots: sorted by
     /// where their centres lie, so that for a ray of octant `o` the slots `s ^ o` taken from
     /// the highest run front to back (Ylitie et al. 2017).
-    #[cfg(all(target_arch = "x86_64", target_feature = "avx2"))]
+    #[cfg(all(
+        target_arch = "x86_64",
+        target_feature = "avx2",
+        target_feature = "fma"
+    ))]
     #[inline(always)]
     fn walk_nearest<const N: usize>(
         &self,
@@ -663,26 +740,28 @@ impl WideBvh {
         loop {
             if current & LEAF == 0 {
                 let node = &self.nodes[current as usize];
-                let (near, met) = nr.hit_lanes::<true>(node, t_max);
-                let mask = move_mask_m256(met) as u32;
+                let (near, missed) = nr.fused_hits(node, t_max);
+                let mask = !move_mask_m256(cast_to_m256_from_m256i(missed)) as u32 & 255;
                 if mask != 0 {
-                    // Entry distances are at least 0 (or -0), so their bits order them as
+                    // Entry distances are at least 0, so their bits order them as unsigned
                     // integers do; replacing the three low bits by the slot keeps the keys
                     // apart and moves a distance by a few units in the last place at most.
+                    // The children not met get all ones, the largest key.
                     let keys = bitor_m256i(
-                        bitand_m256i(cast_to_m256i_from_m256(near), set_splat_i32_m256i(!7)),
-                        slots,
-                    );
-                    let met = cast_to_m256i_from_m256(met);
-                    let keys = bitor_m256i(
-                        bitand_m256i(keys, met),
-                        bitandnot_m256i(met, set_splat_i32_m256i(i32::MAX)),
+                        bitor_m256i(bitand_m256i(near, set_splat_i32_m256i(!7)), slots),
+                        missed,
                     );
                     // The least key, in every lane: pairs, then quadruples, then halves.
-                    let m = min_i32_m256i(keys, shuffle_ai_i32_half_m256i::<0b01_00_11_10>(keys));
-                    let m = min_i32_m256i(m, shuffle_ai_i32_half_m256i::<0b10_11_00_01>(m));
-                    let m = min_i32_m256i(m, shuffle_ai_i64_all_m256i::<0b01_00_11_10>(m));
+                    let m = min_u32_m256i(keys, shuffle_ai_i32_half_m256i::<0b01_00_11_10>(keys));
+                    let m = min_u32_m256i(m, shuffle_ai_i32_half_m256i::<0b10_11_00_01>(m));
+                    let m = min_u32_m256i(m, shuffle_ai_i64_all_m256i::<0b01_00_11_10>(m));
                     let slot = get_i32_from_m128i_s(cast_to_m128i_from_m256i(m)) as usize & 7;
+                    // The nearest child, picked by the key's slot bits in a vector shuffle:
+                    // shorter than the child's load from the slot's index.
+                    let children = load_unaligned_m256i(bytemuck::cast_ref(&node.child));
+                    let next = get_i32_from_m128i_s(cast_to_m128i_from_m256i(
+                        shuffle_av_i32_all_m256i(children, m),
+                    )) as u32;
                     // The others, by rank `s ^ octant` (the top of the stack, visited
                     // first, the highest): their ranks' mask packed, then turned back into
                     // slots.
@@ -692,10 +771,11 @@ impl WideBvh {
                         (COMPACT[ranked as usize] ^ octant_bytes) as i64,
                     ));
                     kids[top..top + 8].copy_from_slice(&packed_children(node, order));
-                    nears[top..top + 8]
-                        .copy_from_slice(&shuffle_av_i32_all_m256(near, order).to_array());
+                    nears[top..top + 8].copy_from_slice(
+                        &shuffle_av_i32_all_m256(cast_to_m256_from_m256i(near), order).to_array(),
+                    );
                     top += rest.count_ones() as usize;
-                    current = node.child[slot];
+                    current = next;
                     continue;
                 }
                 // No child met: on to the stack.
@@ -721,7 +801,11 @@ impl WideBvh {
     /// [`WideBvh::walk`] for any hit where the build has AVX2: the first child met is
     /// visited next, the others pushed as [`WideBvh::walk_nearest`] pushes them, in slot
     /// order. Nothing is culled when popped: the limit changes only when the walk ends.
-    #[cfg(all(target_arch = "x86_64", target_feature = "avx2"))]
+    #[cfg(all(
+        target_arch = "x86_64",
+        target_feature = "avx2",
+        target_feature = "fma"
+    ))]
     #[inline(always)]
     fn walk_any<const N: usize>(
         &self,
@@ -742,8 +826,8 @@ impl WideBvh {
         loop {
             if current & LEAF == 0 {
                 let node = &self.nodes[current as usize];
-                let (_, met) = nr.hit_lanes::<true>(node, t_max);
-                let mask = move_mask_m256(met) as u32;
+                let (_, missed) = nr.fused_hits(node, t_max);
+                let mask = !move_mask_m256(cast_to_m256_from_m256i(missed)) as u32 & 255;
                 if mask != 0 {
                     let rest = mask & (mask - 1);
                     let order = convert_to_i16_m256i_from_lower8_u8_m128i(set_i64_m128i_s(
@@ -851,7 +935,11 @@ fn visit_leaf(leaf: u32, visit: &mut impl Visit, t_max: &mut f32) -> bool {
 }
 
 /// `node`'s children in the slots `order` names, lane by lane (the walks' pushes).
-#[cfg(all(target_arch = "x86_64", target_feature = "avx2"))]
+#[cfg(all(
+    target_arch = "x86_64",
+    target_feature = "avx2",
+    target_feature = "fma"
+))]
 #[inline(always)]
 fn packed_children(node: &WideNode, order: safe_arch::m256i) -> [u32; 8] {
     use safe_arch::*;
@@ -861,7 +949,11 @@ fn packed_children(node: &WideNode, order: safe_arch::m256i) -> [u32; 8] {
 
 /// For each eight-bit mask, the positions of its set bits in ascending order, one a byte
 /// (the bytes past them 0): the shuffle that packs the children a mask names.
-#[cfg(all(target_arch = "x86_64", target_feature = "avx2"))]
+#[cfg(all(
+    target_arch = "x86_64",
+    target_feature = "avx2",
+    target_feature = "fma"
+))]
 static COMPACT: [u64; 256] = {
     let mut table = [0u64; 256];
     let mut mask = 0;
@@ -881,7 +973,11 @@ static COMPACT: [u64; 256] = {
 };
 
 /// `XOR_BITS[o][m]`: mask `m` with bit `i` moved to bit `i ^ o`.
-#[cfg(all(target_arch = "x86_64", target_feature = "avx2"))]
+#[cfg(all(
+    target_arch = "x86_64",
+    target_feature = "avx2",
+    target_feature = "fma"
+))]
 static XOR_BITS: [[u8; 256]; 8] = {
     let mut table = [[0u8; 256]; 8];
     let mut o = 0;
