@@ -640,6 +640,14 @@ impl WideNode {
     }
 }
 
+/// Whether the mesh walks test the root node before setting anything else up, so that a ray
+/// missing the mesh costs them no more than a test of its bounding box would.
+pub(crate) const MESH_ROOT_FIRST: bool = cfg!(all(
+    target_arch = "x86_64",
+    target_feature = "avx2",
+    target_feature = "fma"
+));
+
 /// The eight-wide BVH of a mesh, walked nearest child first.
 #[derive(Clone, Debug, PartialEq, Default)]
 struct WideBvh {
@@ -720,6 +728,13 @@ impl WideBvh {
             return;
         }
         let nr = NodeRay::new(ray);
+        // The root's test comes before anything else is set up: a ray that misses the mesh
+        // (most camera rays around a model) leaves here.
+        let mut node = &self.nodes[0];
+        let (mut near, mut missed) = nr.fused_hits(node, t_max);
+        if move_mask_m256(cast_to_m256_from_m256i(missed)) == 255 {
+            return;
+        }
         // The stack, in two arrays (children, their entry distances), each with room for
         // the eight entries a push writes above the top.
         let mut fixed_kids = [0u32; N];
@@ -736,65 +751,70 @@ impl WideBvh {
             + (ray.dir.z >= 0.0) as usize;
         let octant_bytes = octant as u64 * 0x0101_0101_0101_0101;
         let mut top = 0usize;
-        let mut current = 0u32;
+        // Next: the nearest entry left that starts before the hit found so far.
+        let pop = |top: &mut usize, kids: &[u32], nears: &[f32], t_max: f32| loop {
+            if *top == 0 {
+                return None;
+            }
+            *top -= 1;
+            if nears[*top] <= t_max {
+                return Some(kids[*top]);
+            }
+        };
+        // At the top of the loop: `node`, an inner node, tested (`near`, `missed`).
         loop {
-            if current & LEAF == 0 {
-                let node = &self.nodes[current as usize];
-                let (near, missed) = nr.fused_hits(node, t_max);
-                let mask = !move_mask_m256(cast_to_m256_from_m256i(missed)) as u32 & 255;
-                if mask != 0 {
-                    // Entry distances are at least 0, so their bits order them as unsigned
-                    // integers do; replacing the three low bits by the slot keeps the keys
-                    // apart and moves a distance by a few units in the last place at most.
-                    // The children not met get all ones, the largest key.
-                    let keys = bitor_m256i(
-                        bitor_m256i(bitand_m256i(near, set_splat_i32_m256i(!7)), slots),
-                        missed,
-                    );
-                    // The least key, in every lane: pairs, then quadruples, then halves.
-                    let m = min_u32_m256i(keys, shuffle_ai_i32_half_m256i::<0b01_00_11_10>(keys));
-                    let m = min_u32_m256i(m, shuffle_ai_i32_half_m256i::<0b10_11_00_01>(m));
-                    let m = min_u32_m256i(m, shuffle_ai_i64_all_m256i::<0b01_00_11_10>(m));
-                    let slot = get_i32_from_m128i_s(cast_to_m128i_from_m256i(m)) as usize & 7;
-                    // The nearest child, picked by the key's slot bits in a vector shuffle:
-                    // shorter than the child's load from the slot's index.
-                    let children = load_unaligned_m256i(bytemuck::cast_ref(&node.child));
-                    let next = get_i32_from_m128i_s(cast_to_m128i_from_m256i(
-                        shuffle_av_i32_all_m256i(children, m),
-                    )) as u32;
-                    // The others, by rank `s ^ octant` (the top of the stack, visited
-                    // first, the highest): their ranks' mask packed, then turned back into
-                    // slots.
-                    let rest = mask & !(1 << slot);
-                    let ranked = XOR_BITS[octant][rest as usize & 255];
-                    let order = convert_to_i16_m256i_from_lower8_u8_m128i(set_i64_m128i_s(
-                        (COMPACT[ranked as usize] ^ octant_bytes) as i64,
-                    ));
-                    kids[top..top + 8].copy_from_slice(&packed_children(node, order));
-                    nears[top..top + 8].copy_from_slice(
-                        &shuffle_av_i32_all_m256(cast_to_m256_from_m256i(near), order).to_array(),
-                    );
-                    top += rest.count_ones() as usize;
-                    current = next;
-                    continue;
-                }
-                // No child met: on to the stack.
+            let mask = !move_mask_m256(cast_to_m256_from_m256i(missed)) as u32 & 255;
+            let mut current = if mask != 0 {
+                // Entry distances are at least 0, so their bits order them as unsigned
+                // integers do; replacing the three low bits by the slot keeps the keys
+                // apart and moves a distance by a few units in the last place at most.
+                // The children not met get all ones, the largest key.
+                let keys = bitor_m256i(
+                    bitor_m256i(bitand_m256i(near, set_splat_i32_m256i(!7)), slots),
+                    missed,
+                );
+                // The least key, in every lane: pairs, then quadruples, then halves.
+                let m = min_u32_m256i(keys, shuffle_ai_i32_half_m256i::<0b01_00_11_10>(keys));
+                let m = min_u32_m256i(m, shuffle_ai_i32_half_m256i::<0b10_11_00_01>(m));
+                let m = min_u32_m256i(m, shuffle_ai_i64_all_m256i::<0b01_00_11_10>(m));
+                let slot = get_i32_from_m128i_s(cast_to_m128i_from_m256i(m)) as usize & 7;
+                // The nearest child, picked by the key's slot bits in a vector shuffle:
+                // shorter than the child's load from the slot's index.
+                let children = load_unaligned_m256i(bytemuck::cast_ref(&node.child));
+                let next = get_i32_from_m128i_s(cast_to_m128i_from_m256i(shuffle_av_i32_all_m256i(
+                    children, m,
+                ))) as u32;
+                // The others, by rank `s ^ octant` (the top of the stack, visited first, the
+                // highest): their ranks' mask packed, then turned back into slots.
+                let rest = mask & !(1 << slot);
+                let ranked = XOR_BITS[octant][rest as usize & 255];
+                let order = convert_to_i16_m256i_from_lower8_u8_m128i(set_i64_m128i_s(
+                    (COMPACT[ranked as usize] ^ octant_bytes) as i64,
+                ));
+                kids[top..top + 8].copy_from_slice(&packed_children(node, order));
+                nears[top..top + 8].copy_from_slice(
+                    &shuffle_av_i32_all_m256(cast_to_m256_from_m256i(near), order).to_array(),
+                );
+                top += rest.count_ones() as usize;
+                next
             } else {
+                // No child met: on to the stack.
+                match pop(&mut top, kids, nears, t_max) {
+                    Some(c) => c,
+                    None => return,
+                }
+            };
+            while current & LEAF != 0 {
                 if visit_leaf(current, visit, &mut t_max) {
                     return;
                 }
+                current = match pop(&mut top, kids, nears, t_max) {
+                    Some(c) => c,
+                    None => return,
+                };
             }
-            // Next: the nearest entry left that starts before the hit found so far.
-            loop {
-                if top == 0 {
-                    return;
-                }
-                top -= 1;
-                if nears[top] <= t_max {
-                    current = kids[top];
-                    break;
-                }
-            }
+            node = &self.nodes[current as usize];
+            (near, missed) = nr.fused_hits(node, t_max);
         }
     }
 
@@ -819,35 +839,41 @@ impl WideBvh {
             return;
         }
         let nr = NodeRay::new(ray);
+        // The root's test first, as in `walk_nearest`.
+        let mut node = &self.nodes[0];
+        let (_, mut missed) = nr.fused_hits(node, t_max);
+        if move_mask_m256(cast_to_m256_from_m256i(missed)) == 255 {
+            return;
+        }
         let mut fixed = [0u32; N];
         let kids: &mut [u32] = if N == 0 { heap } else { &mut fixed };
         let mut top = 0usize;
-        let mut current = 0u32;
+        // At the top of the loop: `node`, an inner node, tested (`missed`).
         loop {
-            if current & LEAF == 0 {
-                let node = &self.nodes[current as usize];
-                let (_, missed) = nr.fused_hits(node, t_max);
-                let mask = !move_mask_m256(cast_to_m256_from_m256i(missed)) as u32 & 255;
-                if mask != 0 {
-                    let rest = mask & (mask - 1);
-                    let order = convert_to_i16_m256i_from_lower8_u8_m128i(set_i64_m128i_s(
-                        COMPACT[rest as usize & 255] as i64,
-                    ));
-                    kids[top..top + 8].copy_from_slice(&packed_children(node, order));
-                    top += rest.count_ones() as usize;
-                    current = node.child[mask.trailing_zeros() as usize & 7];
-                    continue;
-                }
+            let mask = !move_mask_m256(cast_to_m256_from_m256i(missed)) as u32 & 255;
+            let mut current = if mask != 0 {
+                let rest = mask & (mask - 1);
+                let order = convert_to_i16_m256i_from_lower8_u8_m128i(set_i64_m128i_s(
+                    COMPACT[rest as usize & 255] as i64,
+                ));
+                kids[top..top + 8].copy_from_slice(&packed_children(node, order));
+                top += rest.count_ones() as usize;
+                node.child[mask.trailing_zeros() as usize & 7]
+            } else if top == 0 {
+                return;
             } else {
-                if visit_leaf(current, visit, &mut t_max) {
+                top -= 1;
+                kids[top]
+            };
+            while current & LEAF != 0 {
+                if visit_leaf(current, visit, &mut t_max) || top == 0 {
                     return;
                 }
+                top -= 1;
+                current = kids[top];
             }
-            if top == 0 {
-                return;
-            }
-            top -= 1;
-            current = kids[top];
+            node = &self.nodes[current as usize];
+            (_, missed) = nr.fused_hits(node, t_max);
         }
     }
 
