@@ -387,17 +387,26 @@ impl NodeRay {
             inv_far: splat3(inv_far),
             #[cfg(all(target_arch = "x86_64", target_feature = "avx", target_feature = "fma"))]
             start: {
-                // `plane * inv + start` is then, before its own rounding, at most the exact
-                // `(plane - origin) * inv` on the near sides and at least it on the far
-                // ones: `-origin * inv` is rounded by at most 2^-24 of itself, the margin is
-                // 2^-22 of it, and moving by the margin rounds by 2^-24 again. So no box the
-                // ray meets is culled (the far sides' slack covers the final rounding, as it
-                // did the subtract-then-multiply's); boxes it misses by less than the margin
-                // (about 2^-22 of |origin| / |direction| along an axis) may be met, which
-                // costs a test, never a hit.
-                let (n, f) = (-ray.origin * inv, -ray.origin * inv_far);
+                // `start` is `-origin * inv` (`inv_far` for the far sides) moved toward the
+                // ray's origin on the near sides and away from it on the far ones by a margin
+                // of 2^-22 of itself, applied before the multiplication: `(-origin * (1 -/+
+                // margin)) * inv`, the sign of `-origin * inv` taken from the signs of the
+                // origin and the direction (the inverse has the direction's sign, zeros
+                // included), so the factor is ready before the division is and one
+                // multiplication follows it. Its two roundings move the product by at most
+                // 2^-23 of itself, half the margin. So `plane * inv + start` is, before its
+                // own rounding, at most the exact `(plane - origin) * inv` on the near sides
+                // and at least it on the far ones, and no box the ray meets is culled (the
+                // far sides' slack covers the final rounding, as it did the
+                // subtract-then-multiply's); boxes it misses by less than the margin (about
+                // 2^-22 of |origin| / |direction| along an axis) may be met, which costs a
+                // test, never a hit.
                 const MARGIN: f32 = 1.0 / (1 << 22) as f32;
-                [splat3(n - n.abs() * MARGIN), splat3(f + f.abs() * MARGIN)]
+                let away = -ray.origin;
+                let sign = Vec3A::ONE.copysign(away) * Vec3A::ONE.copysign(ray.dir);
+                let near = away * (Vec3A::ONE - sign * MARGIN);
+                let far = away * (Vec3A::ONE + sign * MARGIN);
+                [splat3(near * inv), splat3(far * inv_far)]
             },
             // From the inverse's sign, so that a direction of -0 (whose inverse is negative)
             // takes the largest corner as its near side, as the inverse does.
