@@ -705,11 +705,11 @@ impl WideBvh {
         }
     }
 
-    /// [`WideBvh::walk`] for closest hits where the build has AVX2, with nothing in a node's
-    /// visit branching on how many of its children the ray meets: for random rays that
-    /// number changes from node to node, and the branches on it (none, one or more met, the
-    /// insertion sort of those pushed) were mispredicted about six times a ray (cachegrind,
-    /// 11 a random teapot ray in all; 6 with this walk, as many as Embree's).
+    /// [`WideBvh::walk`] for closest hits where the build has AVX2 and FMA, with nothing in
+    /// a node's visit branching on how many of its children the ray meets: for random rays
+    /// that number changes from node to node, and the branches on it (none, one or more
+    /// met, the insertion sort of those pushed) were mispredicted about six times a ray
+    /// (cachegrind, 11 a random teapot ray in all; 6 with this walk, as many as Embree's).
     ///
     /// The nearest child met is found as the least of eight keys, each an entry distance
     /// with its slot in the three low bits (the children not met get the largest key), and
@@ -827,7 +827,7 @@ impl WideBvh {
         }
     }
 
-    /// [`WideBvh::walk`] for any hit where the build has AVX2: the first child met is
+    /// [`WideBvh::walk`] for any hit where the build has AVX2 and FMA: the first child met is
     /// visited next, the others pushed as [`WideBvh::walk_nearest`] pushes them, in slot
     /// order. Nothing is culled when popped: the limit changes only when the walk ends.
     #[cfg(all(
@@ -1207,9 +1207,9 @@ mod tests {
         }
     }
 
-    /// The test of four triangles at once gives, lane by lane, what the scalar watertight test gives, for
-    /// rays in every direction (so every choice of axes and winding) and rays aimed at
-    /// corners and edges, where the test falls back to double precision.
+    /// The test of four triangles at once gives, lane by lane, what the scalar watertight
+    /// test gives, for rays in every direction (so every choice of axes and winding) and rays
+    /// aimed at corners and edges, where the test falls back to double precision.
     #[test]
     fn block_test_agrees_with_the_scalar_watertight_test() {
         let mut rng = Rng::new(11);
@@ -1487,7 +1487,7 @@ mod tests {
             }
             let found = m.intersect(&ray, f32::INFINITY).map(|h| (h.t, h.prim));
             assert_eq!(found, nearest, "{ray:?}");
-            // The portable walks (the only ones in builds without AVX2) agree too.
+            // The portable walks (the only ones in builds without AVX2 and FMA) agree too.
             let mut query = TriangleQuery::<false> {
                 blocks: &m.blocks,
                 source: &ray,
