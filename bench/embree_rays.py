@@ -70,6 +70,7 @@ Usage (from the repository root)
 --------------------------------
     pip install embreex numpy
     python3 bench/embree_rays.py --write-rays /tmp/rays
+    python3 bench/embree_rays.py --write-rays /tmp/rays --rays-only   # no tracing
     python3 bench/embree_rays.py path/to/mesh.obj --repeats 5 --robust
 """
 
@@ -300,7 +301,10 @@ def parse_args(argv: list[str] | None) -> argparse.Namespace:
     parser.add_argument("--write-rays", metavar="DIR", type=Path, help="write camera.rays, incoherent.rays and embree.json into DIR")
     parser.add_argument("--repeats", type=int, default=3, help="timed runs per ray set; the best is reported (default 3)")
     parser.add_argument("--robust", action="store_true", help="build the scene with RTC_SCENE_FLAG_ROBUST")
+    parser.add_argument("--rays-only", action="store_true", help="with --write-rays: write the ray files and stop, tracing nothing")
     args = parser.parse_args(argv)
+    if args.rays_only and not args.write_rays:
+        parser.error("--rays-only needs --write-rays DIR")
     if args.repeats < 1:
         parser.error("--repeats must be at least 1")
     return args
@@ -319,6 +323,9 @@ def main(argv: list[str] | None = None) -> int:
         args.write_rays.mkdir(parents=True, exist_ok=True)
         for name, rays in ray_sets.items():
             write_rays(args.write_rays / f"{name}.rays", rays)
+        if args.rays_only:
+            print(f"wrote {', '.join(f'{n}.rays' for n in ray_sets)} to {args.write_rays}")
+            return 0
 
     scene, build_seconds = build_scene(vertices, triangles, args.robust)
     results = {name: trace(scene, rays, args.repeats) for name, rays in ray_sets.items()}
