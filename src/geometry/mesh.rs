@@ -362,7 +362,11 @@ pub(crate) struct NodeRay {
     inv_far: [Lanes; 3],
     /// `-origin * inv_dir` and `-origin * inv_far`, moved down and up by more than their
     /// rounding, for the node test's fused multiply-adds.
-    #[cfg(all(target_arch = "x86_64", target_feature = "avx", target_feature = "fma"))]
+    #[cfg(all(
+        target_arch = "x86_64",
+        target_feature = "avx2",
+        target_feature = "fma"
+    ))]
     start: [[Lanes; 3]; 2],
     /// Per axis, the side of the boxes the ray enters by: 1 (the largest coordinate) where
     /// it runs toward minus, else 0.
@@ -385,7 +389,11 @@ impl NodeRay {
             origin: splat3(ray.origin),
             inv_dir: splat3(inv),
             inv_far: splat3(inv_far),
-            #[cfg(all(target_arch = "x86_64", target_feature = "avx", target_feature = "fma"))]
+            #[cfg(all(
+                target_arch = "x86_64",
+                target_feature = "avx2",
+                target_feature = "fma"
+            ))]
             start: {
                 // `start` is `-origin * inv` (`inv_far` for the far sides) moved toward the
                 // ray's origin on the near sides and away from it on the far ones by a margin
@@ -421,46 +429,15 @@ impl NodeRay {
     #[cfg(all(target_arch = "x86_64", target_feature = "avx"))]
     #[inline(always)]
     pub(crate) fn hits(&self, node: &WideNode, t_max: f32) -> ([f32; 8], u32) {
-        let (near, met) = self.hit_lanes::<false>(node, t_max);
-        (near.to_array(), safe_arch::move_mask_m256(met) as u32)
-    }
-
-    /// [`NodeRay::hits`] as vectors: the entry distances, and all ones in the lanes of the
-    /// children met. `FUSED` (where the build has FMA): each distance in one fused
-    /// multiply-add, for the mesh walks, which wait on this test at every node. The plain
-    /// test, a subtraction then a multiplication, is cheaper to set up, for the one test of a
-    /// small scene's eight objects (the seed scene was 1 % slower with the fused one).
-    #[cfg(all(target_arch = "x86_64", target_feature = "avx"))]
-    #[inline(always)]
-    pub(crate) fn hit_lanes<const FUSED: bool>(
-        &self,
-        node: &WideNode,
-        t_max: f32,
-    ) -> (Lanes, Lanes) {
         use safe_arch::*;
-        #[cfg(all(target_feature = "avx2", target_feature = "fma"))]
-        if FUSED {
-            let (near, missed) = self.fused_hits(node, t_max);
-            return (
-                cast_to_m256_from_m256i(near),
-                cast_to_m256_from_m256i(bitandnot_m256i(missed, set_splat_i32_m256i(-1))),
-            );
-        }
+        // `(plane - origin) * inverse`, a subtraction then a multiplication: cheaper to set
+        // up than the mesh walks' fused test, for the one test of a small scene's eight
+        // objects (the seed scene was 1 % slower with the fused one).
         let slab = |axis: usize| {
             let side = self.near_side[axis] & 1;
             let planes = &node.planes[axis];
             let n = m256::from_array(planes[side]);
             let f = m256::from_array(planes[side ^ 1]);
-            // `(plane - origin) * inverse` as one fused step, from the start values made
-            // with the ray: 4 cycles less on the way to the next node, and the margin in
-            // them keeps every box the ray meets (see `NodeRay::new`).
-            #[cfg(target_feature = "fma")]
-            if FUSED {
-                return (
-                    fused_mul_add_m256(n, self.inv_dir[axis], self.start[0][axis]),
-                    fused_mul_add_m256(f, self.inv_far[axis], self.start[1][axis]),
-                );
-            }
             let o = self.origin[axis];
             (
                 mul_m256(sub_m256(n, o), self.inv_dir[axis]),
@@ -468,11 +445,11 @@ impl NodeRay {
             )
         };
         let ((n0, f0), (n1, f1), (n2, f2)) = (slab(0), slab(1), slab(2));
-        // As trees, two steps deep rather than a chain of four: the walk waits on them.
+        // As trees, two steps deep rather than a chain of four.
         let near = max_m256(max_m256(n0, n1), max_m256(n2, set_splat_m256(0.0)));
         let far = min_m256(min_m256(f0, f1), min_m256(f2, set_splat_m256(t_max)));
         let met = cmp_op_mask_m256::<{ cmp_op!(LessEqualOrdered) }>(near, far);
-        (near, met)
+        (near.to_array(), move_mask_m256(met) as u32)
     }
 
     /// The mesh walks' node test, where the build has AVX2 and FMA: the entry distances
@@ -1121,13 +1098,26 @@ mod tests {
                 r(0.0, 4.0)
             };
             let (nears, mask) = NodeRay::new(&ray).hits(&node, t_max);
-            // The mesh walks' test, with fused multiply-adds where the build has FMA.
-            #[cfg(all(target_arch = "x86_64", target_feature = "avx"))]
+            // The mesh walks' test, with fused multiply-adds, where the build has AVX2 and FMA.
+            #[cfg(all(
+                target_arch = "x86_64",
+                target_feature = "avx2",
+                target_feature = "fma"
+            ))]
             let (fused_nears, fused_mask) = {
-                let (n, m) = NodeRay::new(&ray).hit_lanes::<true>(&node, t_max);
-                (n.to_array(), safe_arch::move_mask_m256(m) as u32)
+                let (n, missed) = NodeRay::new(&ray).fused_hits(&node, t_max);
+                let n: [f32; 8] = bytemuck::cast(<[i32; 8]>::from(n));
+                (
+                    n,
+                    !safe_arch::move_mask_m256(safe_arch::cast_to_m256_from_m256i(missed)) as u32
+                        & 255,
+                )
             };
-            #[cfg(not(all(target_arch = "x86_64", target_feature = "avx")))]
+            #[cfg(not(all(
+                target_arch = "x86_64",
+                target_feature = "avx2",
+                target_feature = "fma"
+            )))]
             let (fused_nears, fused_mask) = (nears, mask);
             let inv = capped_inverse(ray.dir);
             let near_side = [0, 1, 2].map(|a| inv[a].is_sign_negative() as usize);
