@@ -1,5 +1,6 @@
 //! A mesh's binary BVH (obvhs's PLOC build) collapsed into the eight-wide tree the mesh walks,
-//! with leaves of up to four triangles, which the walk tests at once ([`TriangleBlock`]).
+//! with leaves of up to four triangles, which the walk tests at once (in the lanes of a
+//! [`TriangleBlock`], which leaves share: see `Mesh::new`).
 //!
 //! The collapse is the dynamic programme of Ylitie, Karras and Laine ("Efficient incoherent
 //! ray traversal on GPUs through compressed wide BVHs", HPG 2017), which obvhs also uses for
@@ -23,7 +24,7 @@ pub(crate) const LEAF_SIZE: usize = 4;
 /// What the walk pays to test a node's eight boxes, in the units of the SAH (per unit of a
 /// box's half area).
 const NODE_COST: f32 = 1.0;
-/// What it pays to test a leaf's block of up to four triangles, in the same units (0.4 to
+/// What it pays to test a leaf of up to four triangles, in the same units (0.4 to
 /// 2.4 made no measurable difference).
 const LEAF_COST: f32 = 0.8;
 

@@ -3,7 +3,7 @@
 //! watertight triangle tests, and per-vertex normals and uvs. A mesh is shared
 //! (`Arc`) by every object that places it, so a thousand instances cost one copy.
 
-use super::collapse::{LEAF_SIZE, collapse};
+use super::collapse::collapse;
 use super::triangle::{BlockRay, TriangleBlock};
 use super::{ShapeHit, Surface};
 use crate::accel::push_child;
@@ -34,14 +34,16 @@ pub struct MeshInput {
 /// A triangle mesh arranged for ray queries.
 #[derive(Debug, PartialEq)]
 pub struct Mesh {
-    /// The triangles' corners, a block of four for each leaf of the BVH, in the order the
-    /// leaves name them (gathered, so a leaf's test reads one place). Triangle `4 k + l` (a
-    /// hit's `prim`) is lane `l` of block `k`; a leaf of fewer than four repeats its last.
+    /// The triangles' corners, four lanes a block, the BVH's leaves in the order they are
+    /// named (gathered, so a leaf's test reads one place), each in the lanes left in the
+    /// last block when it has enough, else from lane 0 of a new one (lanes no leaf fills
+    /// repeat another of the block's triangles). Triangle `4 k + l` (a hit's `prim`) is lane
+    /// `l` of block `k`. A leaf reference names its block and lanes (see [`LEAF_LANES`]).
     blocks: Vec<TriangleBlock>,
-    /// Vertex indices of each triangle, in the blocks' order, lanes repeated included (for
+    /// Vertex indices of each triangle, in the blocks' order, unfilled lanes included (for
     /// normals and uvs).
     faces: Vec<[u32; 3]>,
-    /// Number of triangles (not counting repeated lanes).
+    /// Number of triangles (not counting unfilled lanes).
     triangles: usize,
     normals: Vec<Vec3>,
     uvs: Vec<Vec2>,
@@ -140,16 +142,48 @@ impl Mesh {
             params.reinsertion_batch_ratio,
             None,
         );
-        let wide = collapse(&bvh2)?;
-        // Lay the triangles out in the order the BVH's leaves name them, four lanes a leaf.
-        let order: Vec<usize> = wide
-            .leaves
-            .iter()
-            .flat_map(|leaf| (0..LEAF_SIZE).map(|l| kept[leaf[l.min(leaf.len() - 1)] as usize]))
-            .collect();
+        let mut wide = collapse(&bvh2)?;
+        // Lay the triangles out in the order the BVH's leaves name them, each leaf in the
+        // first of the last few blocks with room for it, else in a new block (see
+        // `PACKING_WINDOW`), and make each leaf reference name its block and lanes instead
+        // of its index.
+        let mut order: Vec<usize> = Vec::with_capacity(kept.len() * 5 / 4);
+        // Per block, the lanes taken.
+        let mut taken: Vec<usize> = Vec::with_capacity(kept.len() / 3);
+        let mut refs = Vec::with_capacity(wide.leaves.len());
+        for leaf in &wide.leaves {
+            let n = leaf.len();
+            let recent = taken.len().saturating_sub(PACKING_WINDOW)..taken.len();
+            let block = match recent.into_iter().find(|&b| taken[b] + n <= LANES) {
+                Some(b) => b,
+                None => {
+                    taken.push(0);
+                    order.extend([usize::MAX; LANES]);
+                    taken.len() - 1
+                }
+            };
+            let lane = taken[block];
+            for (i, &p) in leaf.iter().enumerate() {
+                order[block * LANES + lane + i] = kept[p as usize];
+            }
+            taken[block] += n;
+            refs.push(leaf_reference(block, lane, n)?);
+        }
+        // Unfilled lanes repeat their block's first triangle.
+        for (block, &n) in order.chunks_exact_mut(LANES).zip(&taken) {
+            let first = block[0];
+            block[n..].fill(first);
+        }
+        for node in &mut wide.nodes {
+            for child in &mut node.child {
+                if *child & LEAF != 0 {
+                    *child = refs[(*child & !LEAF) as usize];
+                }
+            }
+        }
         let faces: Vec<[u32; 3]> = order.iter().map(|&i| triangles[i]).collect();
         let blocks = faces
-            .chunks_exact(LEAF_SIZE)
+            .chunks_exact(LANES)
             .map(|four| {
                 TriangleBlock::new(&std::array::from_fn(|l| {
                     four[l].map(|k| positions[k as usize].into())
@@ -274,7 +308,7 @@ impl Mesh {
 
     /// The corners of triangle `prim` (in BVH order).
     fn corners(&self, prim: u32) -> [Vec3A; 3] {
-        self.blocks[prim as usize / LEAF_SIZE].corners(prim as usize % LEAF_SIZE)
+        self.blocks[prim as usize / LANES].corners(prim as usize % LANES)
     }
 
     /// The vertex normals interpolated at a hit (unit, object space), when the mesh has them.
@@ -316,7 +350,7 @@ struct TriangleQuery<'a, const ANY: bool> {
 impl<const ANY: bool> Visit for TriangleQuery<'_, ANY> {
     #[inline(always)]
     fn prefetch(&self, leaf: u32) {
-        if let Some(block) = self.blocks.get(leaf as usize) {
+        if let Some(block) = self.blocks.get((leaf & LEAF_BLOCK) as usize) {
             block.prefetch();
         }
     }
@@ -325,10 +359,14 @@ impl<const ANY: bool> Visit for TriangleQuery<'_, ANY> {
     fn visit(&mut self, leaf: u32, t_max: &mut f32) -> bool {
         let source = self.source;
         let ray = self.ray.get_or_insert_with(|| BlockRay::new(source));
-        let Some(block) = self.blocks.get(leaf as usize) else {
+        let Some(block) = self.blocks.get((leaf & LEAF_BLOCK) as usize) else {
             return false;
         };
-        let hits = ray.lanes(block, *t_max);
+        let hits = ray.lanes(
+            block,
+            LEAF_LANE_MASKS[(leaf >> LEAF_LANES) as usize & 15],
+            *t_max,
+        );
         let Some((lane, (t, u, v))) = (if ANY && hits.mask != 0 {
             // Any hit will do: the lowest lane's.
             let lane = hits.mask.trailing_zeros() as usize;
@@ -342,7 +380,7 @@ impl<const ANY: bool> Visit for TriangleQuery<'_, ANY> {
         self.hit = Some(ShapeHit {
             t,
             part: 0,
-            prim: leaf * LEAF_SIZE as u32 + lane as u32,
+            prim: (leaf & LEAF_BLOCK) * LANES as u32 + lane as u32,
             bary: Vec2::new(u, v),
         });
         ANY
@@ -591,8 +629,55 @@ fn splat3(v: Vec3A) -> [Lanes; 3] {
     [v.x, v.y, v.z]
 }
 
-/// Marks a child reference as a leaf: `LEAF | k` for the mesh's `k`-th block of triangles.
+/// Marks a child reference as a leaf. `collapse` makes `LEAF | k` for its `k`-th leaf;
+/// [`Mesh::new`] turns that into the leaf's block and lanes ([`leaf_reference`]).
 pub(crate) const LEAF: u32 = 1 << 31;
+
+/// Triangles in a block ([`TriangleBlock`]).
+const LANES: usize = 4;
+
+/// How many of the last blocks a leaf may go into, when it has room there. Leaves hold one
+/// to four triangles (2.7 on average in the bunny's tree), so a block per leaf left a third
+/// of the lanes empty; sharing blocks fills 84 % of them when a leaf may only go into the
+/// last block, 93 % with 4 and 96 % with 16 (the bunny: 18,079 blocks for 25,843 leaves),
+/// and the leaves stay near their neighbours in the tree. The triangles take 2.6 MB instead
+/// of 3.7 MB, which matters where they do not fit in the cache: random rays through the
+/// bunny about 4 % faster (a block each with 48 bytes more, 8 % slower).
+const PACKING_WINDOW: usize = 16;
+
+/// Where a mesh leaf reference keeps its lanes: the first (two bits), then the count less
+/// one (two bits).
+const LEAF_LANES: u32 = 27;
+
+/// The bits of a mesh leaf reference that give its block.
+const LEAF_BLOCK: u32 = (1 << LEAF_LANES) - 1;
+
+/// The lanes of a leaf, a bit each, by the four bits of its reference that give them.
+static LEAF_LANE_MASKS: [u32; 16] = {
+    let mut masks = [0; 16];
+    let mut i = 0;
+    while i < 16 {
+        let (first, n) = (i & 3, (i >> 2) + 1);
+        masks[i] = ((1 << n) - 1) << first & 15;
+        i += 1;
+    }
+    masks
+};
+
+/// The reference of a leaf of `n` triangles from lane `lane` of block `block`.
+fn leaf_reference(block: usize, lane: usize, n: usize) -> Result<u32, String> {
+    // Two blocks in a row hold more than four triangles (the second started because the
+    // leaf did not fit in the first), so a mesh has fewer than MAX_TRIANGLES / 2 blocks.
+    if block > LEAF_BLOCK as usize || lane + n > LANES || n == 0 {
+        return Err(format!(
+            "a BVH leaf of {n} triangles at block {block}, lane {lane}"
+        ));
+    }
+    Ok(LEAF | (((n - 1) << 2 | lane) as u32) << LEAF_LANES | block as u32)
+}
+
+// A mesh's blocks fit in the block bits.
+const _: () = assert!(MAX_TRIANGLES / 2 <= LEAF_BLOCK as usize + 1);
 
 /// A node of the eight-wide BVH, made by `collapse`: its children's boxes as floats and
 /// their references (decoding obvhs's eight quantised boxes per node visit cost more than
@@ -1197,22 +1282,33 @@ mod tests {
         }
     }
 
-    /// The test of four triangles at once gives, lane by lane, what the scalar watertight
-    /// test gives, for rays in every direction (so every choice of axes and winding) and rays
-    /// aimed at corners and edges, where the test falls back to double precision.
+    /// The test of a block's triangles at once gives, lane by lane, what the scalar
+    /// watertight test gives, for rays in every direction (so every choice of axes and
+    /// winding) and rays aimed at corners and edges, where the test falls back to double
+    /// precision; and it never reports a lane it was not asked about (another leaf's).
     #[test]
     fn block_test_agrees_with_the_scalar_watertight_test() {
         let mut rng = Rng::new(11);
         let mut r = |lo: f32, hi: f32| lo + (hi - lo) * rng.next_f32();
-        for case in 0..5000 {
+        for case in 0..8000 {
             let corners: [Vec3A; 3] =
                 std::array::from_fn(|_| Vec3A::new(r(-1.0, 1.0), r(-1.0, 1.0), r(-1.0, 1.0)));
-            // The triangle in lane `case % 4` of a block whose other lanes are random.
-            let lane = case % 4;
+            // A leaf of `n` triangles from lane `first`, the triangle in one of its lanes,
+            // the others random; the lanes outside the leaf random, or (every other case)
+            // copies of the triangle, which must not be reported.
+            let n = 1 + (case / 4) % 4;
+            let first = (case / 16) % (5 - n);
+            let lane = first + case % n;
+            let leaf = ((1 << n) - 1) << first;
             let mut four: [[Vec3A; 3]; 4] = std::array::from_fn(|_| {
                 std::array::from_fn(|_| Vec3A::new(r(-1.0, 1.0), r(-1.0, 1.0), r(-1.0, 1.0)))
             });
             four[lane] = corners;
+            for (l, t) in four.iter_mut().enumerate() {
+                if leaf & (1 << l) == 0 && case % 2 == 0 {
+                    *t = corners;
+                }
+            }
             let block = TriangleBlock::new(&four);
             let origin = Vec3A::new(r(-3.0, 3.0), r(-3.0, 3.0), r(-3.0, 3.0));
             // Aimed at a corner, a point on an edge, or anywhere near the triangle.
@@ -1233,12 +1329,13 @@ mod tests {
             };
             let scalar =
                 WatertightRay::new(&ray).intersect(corners[0], corners[1], corners[2], t_max);
-            let hits = BlockRay::new(&ray).lanes(&block, t_max);
+            let hits = BlockRay::new(&ray).lanes(&block, leaf, t_max);
             let lanes = (hits.mask & (1 << lane) != 0).then(|| hits.get(lane));
             // `==` on floats, so a zero weight may differ in sign only.
             assert_eq!(lanes, scalar, "case {case}");
-            // The nearest lane is the nearest of the four tested one by one.
-            let one_by_one = (0..4)
+            assert_eq!(hits.mask & !leaf, 0, "case {case}: a lane outside the leaf");
+            // The nearest lane is the nearest of the leaf's triangles tested one by one.
+            let one_by_one = (first..first + n)
                 .filter_map(|l| {
                     let [a, b, c] = block.corners(l);
                     WatertightRay::new(&ray)
@@ -1431,6 +1528,71 @@ mod tests {
         let n = area_weighted_normals(&positions, &[[0, 1, 2], [0, 3, 4]]);
         assert!(n[0].z > 0.99 && n[0].x > 0.0, "{}", n[0]);
         assert!((n[3] - Vec3::X).length() < 1e-6);
+    }
+
+    /// Leaves share blocks: each leaf's lanes lie in one block, no lane belongs to two
+    /// leaves, and the leaves' lanes hold every triangle once; lanes no leaf names repeat
+    /// one of their block's.
+    #[test]
+    fn leaves_are_packed_into_blocks_and_hold_every_triangle_once() {
+        let mut rng = Rng::new(5);
+        let mut r = |lo: f32, hi: f32| lo + (hi - lo) * rng.next_f32();
+        let mut positions = vec![];
+        let mut triangles = vec![];
+        for i in 0..2000u32 {
+            let c = Vec3::new(r(-1.0, 1.0), r(-1.0, 1.0), r(-1.0, 1.0));
+            for _ in 0..3 {
+                positions.push(c + Vec3::new(r(-0.1, 0.1), r(-0.1, 0.1), r(-0.1, 0.1)));
+            }
+            triangles.push([3 * i, 3 * i + 1, 3 * i + 2]);
+        }
+        let (m, dropped) = Mesh::new(MeshInput {
+            positions,
+            triangles: triangles.clone(),
+            ..MeshInput::default()
+        })
+        .unwrap();
+        assert_eq!(dropped, 0);
+        let mut owner = vec![None; m.faces.len()];
+        let mut leaves = 0;
+        for (i, node) in m.bvh.nodes.iter().enumerate() {
+            for &child in node.child.iter().filter(|&&c| c & LEAF != 0) {
+                let block = (child & LEAF_BLOCK) as usize;
+                let lanes = LEAF_LANE_MASKS[(child >> LEAF_LANES) as usize & 15];
+                assert!(lanes != 0 && block < m.blocks.len(), "{child:#x}");
+                for lane in (0..LANES).filter(|l| lanes & (1 << l) != 0) {
+                    let prim = block * LANES + lane;
+                    assert_eq!(owner[prim], None, "triangle {prim} in two leaves");
+                    owner[prim] = Some(i);
+                }
+                leaves += 1;
+            }
+        }
+        let mut held: Vec<[u32; 3]> = (0..m.faces.len())
+            .filter(|&p| owner[p].is_some())
+            .map(|p| m.faces[p])
+            .collect();
+        held.sort();
+        let mut all = triangles;
+        all.sort();
+        assert_eq!(held, all);
+        for (p, face) in m.faces.iter().enumerate() {
+            let block = &m.faces[p / LANES * LANES..][..LANES];
+            assert!(owner[p].is_some() || block.contains(face));
+            assert_eq!(m.corners(p as u32), m.blocks[p / LANES].corners(p % LANES));
+        }
+        // Most leaves hold fewer than four triangles, and blocks are shared.
+        assert_eq!(m.triangle_count(), 2000);
+        assert!(
+            m.blocks.len() < leaves,
+            "{} blocks, {leaves} leaves",
+            m.blocks.len()
+        );
+        assert!(
+            m.blocks.len() * LANES < 2000 * 11 / 10,
+            "{} blocks",
+            m.blocks.len()
+        );
     }
 
     #[test]

@@ -1,6 +1,6 @@
 use super::{ShapeHit, Surface};
 use crate::math::{Aabb, Ray, Vec2, Vec3A};
-use glam::{BVec4A, Mat3A, Vec4};
+use glam::{Mat3A, Vec4};
 
 /// A ray prepared for the watertight ray-triangle test of Woop, Benthin and Wald (JCGT
 /// 2013): translated to the origin and sheared so that it runs along +z. Two triangles that
@@ -36,9 +36,10 @@ fn shear_of(ray: &Ray) -> ([usize; 3], [f32; 3]) {
 }
 
 /// Four triangles for [`BlockRay`], coordinate by coordinate: `v[axis][corner]` holds that
-/// coordinate of corner a, b or c of each of the four triangles, one a lane. A leaf of fewer
-/// triangles repeats its last in the lanes left over (a copy never wins a tie: the lowest
-/// lane does).
+/// coordinate of corner a, b or c of each of the four triangles, one a lane. The lanes may
+/// belong to different leaves of a BVH (a mesh packs leaves of one to four triangles into
+/// blocks, see `Mesh::new`); a test names the lanes it asks about, and the others' results
+/// are dropped.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct TriangleBlock {
     v: [[Vec4; 3]; 3],
@@ -87,9 +88,8 @@ pub(crate) struct BlockRay {
 
 /// A block's hits, lane by lane ([`BlockRay::lanes`]).
 pub(crate) struct BlockHits {
-    /// A bit per lane hit in `(0, t_max)`.
+    /// A bit per lane asked about and hit in `(0, t_max)`.
     pub(crate) mask: u32,
-    hit: BVec4A,
     t: Vec4,
     /// `1 / det`, and the edge functions of b and c (`v`, `w`): the weights are their
     /// products.
@@ -118,12 +118,20 @@ impl BlockHits {
         if self.mask == 0 {
             return None;
         }
-        let lane = if self.mask & (self.mask - 1) == 0 {
-            self.mask.trailing_zeros() as usize
-        } else {
-            let t = Vec4::select(self.hit, self.t, Vec4::INFINITY);
-            (t.cmpeq(Vec4::splat(t.min_element())).bitmask() & self.mask).trailing_zeros() as usize
-        };
+        let mut rest = self.mask;
+        let mut lane = rest.trailing_zeros() as usize & 3;
+        rest &= rest - 1;
+        if rest != 0 {
+            // More than one (rarely): the nearest, the first of equals.
+            let t = self.t.to_array();
+            while rest != 0 {
+                let l = rest.trailing_zeros() as usize & 3;
+                rest &= rest - 1;
+                if t[l] < t[lane] {
+                    lane = l;
+                }
+            }
+        }
         Some((lane, self.get(lane)))
     }
 }
@@ -143,9 +151,10 @@ impl BlockRay {
         }
     }
 
-    /// The four triangles' hits with `0 < t < t_max`.
+    /// The hits with `0 < t < t_max` of the block's triangles in the lanes `lanes` names
+    /// (a bit each).
     #[inline(always)]
-    pub(crate) fn lanes(&self, block: &TriangleBlock, t_max: f32) -> BlockHits {
+    pub(crate) fn lanes(&self, block: &TriangleBlock, lanes: u32, t_max: f32) -> BlockHits {
         let [kx, ky, kz] = self.k.map(|k| k.min(2));
         let [ox, oy, oz] = self.origin;
         let [sx, sy, sz] = self.shear;
@@ -164,7 +173,8 @@ impl BlockRay {
         let mut u = cx * by - cy * bx;
         let mut v = ax * cy - ay * cx;
         let mut w = bx * ay - by * ax;
-        let zero = (u.cmpeq(Vec4::ZERO) | v.cmpeq(Vec4::ZERO) | w.cmpeq(Vec4::ZERO)).bitmask();
+        let zero =
+            (u.cmpeq(Vec4::ZERO) | v.cmpeq(Vec4::ZERO) | w.cmpeq(Vec4::ZERO)).bitmask() & lanes;
         if zero != 0 {
             // A lane on (or within rounding of) an edge: decided in double precision, as
             // the scalar test does.
@@ -193,8 +203,7 @@ impl BlockRay {
         let hit =
             ahead & !(negative & positive) & t.cmpgt(Vec4::ZERO) & t.cmplt(Vec4::splat(t_max));
         BlockHits {
-            mask: hit.bitmask(),
-            hit,
+            mask: hit.bitmask() & lanes,
             t,
             inv,
             v,
