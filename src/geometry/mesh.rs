@@ -1,10 +1,10 @@
 //! A triangle mesh: its own BVH over its triangles (obvhs's PLOC binary tree, collapsed into
-//! an eight-wide tree with leaves of up to four triangles tested at once: see `collapse`),
+//! an eight-wide tree with leaves of up to eight triangles tested at once: see `collapse`),
 //! watertight triangle tests, and per-vertex normals and uvs. A mesh is shared
 //! (`Arc`) by every object that places it, so a thousand instances cost one copy.
 
 use super::collapse::collapse;
-use super::triangle::{BlockRay, TriangleBlock};
+use super::triangle::{BlockRay, LANES, TriangleBlock};
 use super::{ShapeHit, Surface};
 use crate::accel::push_child;
 use crate::math::{Aabb, Ray, Vec2, Vec3, Vec3A};
@@ -12,9 +12,10 @@ use crate::math::{Aabb, Ray, Vec2, Vec3, Vec3A};
 use glam::Vec4;
 use std::time::{Duration, Instant};
 
-/// Most triangles one mesh may have (indices are `u32`; the BVH needs about 16 bytes and
-/// the mesh about 60 bytes per triangle, so this is some 20 GiB).
-pub const MAX_TRIANGLES: usize = 1 << 28;
+/// Most triangles one mesh may have (a leaf reference names one of at most 2^25 blocks of
+/// eight; the BVH needs about 8 bytes and the mesh about 60 bytes per triangle, so this is
+/// some 9 GiB). A scene may hold more in several meshes.
+pub const MAX_TRIANGLES: usize = 1 << 27;
 
 /// Geometry read from a file or built in code, before it is arranged for ray queries.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -34,11 +35,12 @@ pub struct MeshInput {
 /// A triangle mesh arranged for ray queries.
 #[derive(Debug, PartialEq)]
 pub struct Mesh {
-    /// The triangles' corners, four lanes a block, the BVH's leaves in the order they are
-    /// named (gathered, so a leaf's test reads one place), each in the lanes left in the
-    /// last block when it has enough, else from lane 0 of a new one (lanes no leaf fills
-    /// repeat another of the block's triangles). Triangle `4 k + l` (a hit's `prim`) is lane
-    /// `l` of block `k`. A leaf reference names its block and lanes (see [`LEAF_LANES`]).
+    /// The triangles' corners, eight lanes a block, the BVH's leaves in the order they are
+    /// named (gathered, so a leaf's test reads one place), each in the lanes left in one of
+    /// the last blocks when it has enough (see [`PACKING_WINDOW`]), else from lane 0 of a
+    /// new one (lanes no leaf fills repeat another of the block's triangles). Triangle
+    /// `8 k + l` (a hit's `prim`) is lane `l` of block `k`. A leaf reference names its block
+    /// and lanes (see [`LEAF_LANES`]).
     blocks: Vec<TriangleBlock>,
     /// Vertex indices of each triangle, in the blocks' order, unfilled lanes included (for
     /// normals and uvs).
@@ -128,7 +130,7 @@ impl Mesh {
         }
         let start = Instant::now();
         // obvhs's binary tree (PLOC, then reinsertion: its `medium_build`), collapsed into
-        // an eight-wide tree with leaves of up to four triangles (see `collapse`).
+        // an eight-wide tree with leaves of up to eight triangles (see `collapse`).
         let params = obvhs::BvhBuildParams::medium_build();
         let mut bvh2 = obvhs::ploc::PlocBuilder::with_capacity(aabbs.len()).build(
             params.ploc_search_distance,
@@ -364,7 +366,7 @@ impl<const ANY: bool> Visit for TriangleQuery<'_, ANY> {
         };
         let hits = ray.lanes(
             block,
-            LEAF_LANE_MASKS[(leaf >> LEAF_LANES) as usize & 15],
+            LEAF_LANE_MASKS[(leaf >> LEAF_LANES) as usize & 63],
             *t_max,
         );
         let Some((lane, (t, u, v))) = (if ANY && hits.mask != 0 {
@@ -633,32 +635,30 @@ fn splat3(v: Vec3A) -> [Lanes; 3] {
 /// [`Mesh::new`] turns that into the leaf's block and lanes ([`leaf_reference`]).
 pub(crate) const LEAF: u32 = 1 << 31;
 
-/// Triangles in a block ([`TriangleBlock`]).
-const LANES: usize = 4;
-
 /// How many of the last blocks a leaf may go into, when it has room there. Leaves hold one
-/// to four triangles (2.7 on average in the bunny's tree), so a block per leaf left a third
-/// of the lanes empty; sharing blocks fills 84 % of them when a leaf may only go into the
-/// last block, 93 % with 4 and 96 % with 16 (the bunny: 18,079 blocks for 25,843 leaves),
-/// and the leaves stay near their neighbours in the tree. The triangles take 2.6 MB instead
-/// of 3.7 MB, which matters where they do not fit in the cache: random rays through the
-/// bunny about 4 % faster (a block each with 48 bytes more, 8 % slower).
+/// to eight triangles (4.6 on average in the bunny's tree), so a block per leaf would leave
+/// almost half the lanes empty; sharing blocks fills 80 % of them when a leaf may only go
+/// into the last block, 89 % with 4, 94 % with 16 and 97 % with 64 (the bunny: 9,199 blocks
+/// for 14,956 leaves with 16; 4, 16 and 64 measured the same), and the leaves stay near
+/// their neighbours in the tree. The bunny's triangles take 2.6 MB, which matters where
+/// they do not fit in the cache: with blocks of four lanes, sharing them took 3.7 MB down to
+/// 2.6 and random rays through the bunny ran 3 % faster (48 bytes more a block, 8 % slower).
 const PACKING_WINDOW: usize = 16;
 
-/// Where a mesh leaf reference keeps its lanes: the first (two bits), then the count less
-/// one (two bits).
-const LEAF_LANES: u32 = 27;
+/// Where a mesh leaf reference keeps its lanes: the first (three bits), then the count less
+/// one (three bits).
+const LEAF_LANES: u32 = 25;
 
 /// The bits of a mesh leaf reference that give its block.
 const LEAF_BLOCK: u32 = (1 << LEAF_LANES) - 1;
 
-/// The lanes of a leaf, a bit each, by the four bits of its reference that give them.
-static LEAF_LANE_MASKS: [u32; 16] = {
-    let mut masks = [0; 16];
+/// The lanes of a leaf, a bit each, by the six bits of its reference that give them.
+static LEAF_LANE_MASKS: [u32; 64] = {
+    let mut masks = [0; 64];
     let mut i = 0;
-    while i < 16 {
-        let (first, n) = (i & 3, (i >> 2) + 1);
-        masks[i] = ((1 << n) - 1) << first & 15;
+    while i < 64 {
+        let (first, n) = (i & 7, (i >> 3) + 1);
+        masks[i] = ((1 << n) - 1) << first & 255;
         i += 1;
     }
     masks
@@ -666,18 +666,18 @@ static LEAF_LANE_MASKS: [u32; 16] = {
 
 /// The reference of a leaf of `n` triangles from lane `lane` of block `block`.
 fn leaf_reference(block: usize, lane: usize, n: usize) -> Result<u32, String> {
-    // Two blocks in a row hold more than four triangles (the second started because the
-    // leaf did not fit in the first), so a mesh has fewer than MAX_TRIANGLES / 2 blocks.
+    // Two blocks in a row hold more than eight triangles (the second started because the
+    // leaf did not fit in the first), so a mesh has at most 2 MAX_TRIANGLES / 9 + 1 blocks.
     if block > LEAF_BLOCK as usize || lane + n > LANES || n == 0 {
         return Err(format!(
             "a BVH leaf of {n} triangles at block {block}, lane {lane}"
         ));
     }
-    Ok(LEAF | (((n - 1) << 2 | lane) as u32) << LEAF_LANES | block as u32)
+    Ok(LEAF | (((n - 1) << 3 | lane) as u32) << LEAF_LANES | block as u32)
 }
 
 // A mesh's blocks fit in the block bits.
-const _: () = assert!(MAX_TRIANGLES / 2 <= LEAF_BLOCK as usize + 1);
+const _: () = assert!(2 * MAX_TRIANGLES / (LANES + 1) < LEAF_BLOCK as usize);
 
 /// A node of the eight-wide BVH, made by `collapse`: its children's boxes as floats and
 /// their references (decoding obvhs's eight quantised boxes per node visit cost more than
@@ -1290,26 +1290,26 @@ mod tests {
     fn block_test_agrees_with_the_scalar_watertight_test() {
         let mut rng = Rng::new(11);
         let mut r = |lo: f32, hi: f32| lo + (hi - lo) * rng.next_f32();
-        for case in 0..8000 {
+        for case in 0..12000 {
             let corners: [Vec3A; 3] =
                 std::array::from_fn(|_| Vec3A::new(r(-1.0, 1.0), r(-1.0, 1.0), r(-1.0, 1.0)));
             // A leaf of `n` triangles from lane `first`, the triangle in one of its lanes,
             // the others random; the lanes outside the leaf random, or (every other case)
             // copies of the triangle, which must not be reported.
-            let n = 1 + (case / 4) % 4;
-            let first = (case / 16) % (5 - n);
+            let n = 1 + (case / 4) % LANES;
+            let first = (case / 32) % (LANES + 1 - n);
             let lane = first + case % n;
             let leaf = ((1 << n) - 1) << first;
-            let mut four: [[Vec3A; 3]; 4] = std::array::from_fn(|_| {
+            let mut tris: [[Vec3A; 3]; LANES] = std::array::from_fn(|_| {
                 std::array::from_fn(|_| Vec3A::new(r(-1.0, 1.0), r(-1.0, 1.0), r(-1.0, 1.0)))
             });
-            four[lane] = corners;
-            for (l, t) in four.iter_mut().enumerate() {
+            tris[lane] = corners;
+            for (l, t) in tris.iter_mut().enumerate() {
                 if leaf & (1 << l) == 0 && case % 2 == 0 {
                     *t = corners;
                 }
             }
-            let block = TriangleBlock::new(&four);
+            let block = TriangleBlock::new(&tris);
             let origin = Vec3A::new(r(-3.0, 3.0), r(-3.0, 3.0), r(-3.0, 3.0));
             // Aimed at a corner, a point on an edge, or anywhere near the triangle.
             let (a, b) = (case % 3, (case + 1) % 3);
@@ -1334,6 +1334,12 @@ mod tests {
             // `==` on floats, so a zero weight may differ in sign only.
             assert_eq!(lanes, scalar, "case {case}");
             assert_eq!(hits.mask & !leaf, 0, "case {case}: a lane outside the leaf");
+            // The test of builds without AVX, in two halves, finds the same.
+            let halves = BlockRay::new(&ray).lanes_in_halves(&block, leaf, t_max);
+            assert_eq!(halves.mask, hits.mask, "case {case}");
+            for l in (0..LANES).filter(|l| hits.mask & (1 << l) != 0) {
+                assert_eq!(halves.get(l), hits.get(l), "case {case}");
+            }
             // The nearest lane is the nearest of the leaf's triangles tested one by one.
             let one_by_one = (first..first + n)
                 .filter_map(|l| {
@@ -1558,7 +1564,7 @@ mod tests {
         for (i, node) in m.bvh.nodes.iter().enumerate() {
             for &child in node.child.iter().filter(|&&c| c & LEAF != 0) {
                 let block = (child & LEAF_BLOCK) as usize;
-                let lanes = LEAF_LANE_MASKS[(child >> LEAF_LANES) as usize & 15];
+                let lanes = LEAF_LANE_MASKS[(child >> LEAF_LANES) as usize & 63];
                 assert!(lanes != 0 && block < m.blocks.len(), "{child:#x}");
                 for lane in (0..LANES).filter(|l| lanes & (1 << l) != 0) {
                     let prim = block * LANES + lane;
@@ -1581,7 +1587,7 @@ mod tests {
             assert!(owner[p].is_some() || block.contains(face));
             assert_eq!(m.corners(p as u32), m.blocks[p / LANES].corners(p % LANES));
         }
-        // Most leaves hold fewer than four triangles, and blocks are shared.
+        // Most leaves hold fewer than eight triangles, and blocks are shared.
         assert_eq!(m.triangle_count(), 2000);
         assert!(
             m.blocks.len() < leaves,

@@ -35,80 +35,237 @@ fn shear_of(ray: &Ray) -> ([usize; 3], [f32; 3]) {
     ([kx, ky, kz], [d[kx] / d[kz], d[ky] / d[kz], 1.0 / d[kz]])
 }
 
-/// Four triangles for [`BlockRay`], coordinate by coordinate: `v[axis][corner]` holds that
-/// coordinate of corner a, b or c of each of the four triangles, one a lane. The lanes may
-/// belong to different leaves of a BVH (a mesh packs leaves of one to four triangles into
+/// Triangles in a [`TriangleBlock`].
+pub(crate) const LANES: usize = 8;
+
+/// Eight triangles for [`BlockRay`], coordinate by coordinate: `v[axis][corner]` holds that
+/// coordinate of corner a, b or c of each of the eight triangles, one a lane. The lanes may
+/// belong to different leaves of a BVH (a mesh packs leaves of one to eight triangles into
 /// blocks, see `Mesh::new`); a test names the lanes it asks about, and the others' results
 /// are dropped.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[repr(C, align(32))]
 pub(crate) struct TriangleBlock {
-    v: [[Vec4; 3]; 3],
+    v: [[[f32; LANES]; 3]; 3],
 }
 
 impl TriangleBlock {
     /// The block of `tris` (corners a, b, c of each), one a lane.
-    pub(crate) fn new(tris: &[[Vec3A; 3]; 4]) -> Self {
+    pub(crate) fn new(tris: &[[Vec3A; 3]; LANES]) -> Self {
         TriangleBlock {
             v: std::array::from_fn(|axis| {
-                std::array::from_fn(|corner| {
-                    Vec4::from_array(std::array::from_fn(|l| tris[l][corner][axis]))
-                })
+                std::array::from_fn(|corner| std::array::from_fn(|l| tris[l][corner][axis]))
             }),
         }
     }
 
-    /// Asks the cache for the block's 144 bytes: three addresses 64 bytes apart cover the
-    /// three cache lines (at most) it spans.
+    /// Asks the cache for the block's 288 bytes (five cache lines).
     #[inline(always)]
     pub(crate) fn prefetch(&self) {
-        crate::math::prefetch(&self.v[0][0]);
-        crate::math::prefetch(&self.v[1][1]);
-        crate::math::prefetch(&self.v[2][2]);
+        // Rows of 32 bytes, two a line: every other row, from the first.
+        for (axis, corner) in [(0, 0), (0, 2), (1, 1), (2, 0), (2, 2)] {
+            crate::math::prefetch(&self.v[axis][corner]);
+        }
     }
 
-    /// The corners a, b, c of the triangle in `lane` (0 to 3).
+    /// The corners a, b, c of the triangle in `lane` (0 to 7).
     pub(crate) fn corners(&self, lane: usize) -> [Vec3A; 3] {
-        let at = |axis: usize, corner: usize| self.v[axis][corner].to_array()[lane & 3];
+        let at = |axis: usize, corner: usize| self.v[axis][corner][lane % LANES];
         [0, 1, 2].map(|c| Vec3A::new(at(0, c), at(1, c), at(2, c)))
     }
 }
 
-/// The watertight test for four triangles at once ([`TriangleBlock`]): each lane does the
-/// operations of [`WatertightRay::intersect`] in the same order, so it gives the same hits,
-/// to the bit.
+/// Lanes of floats for the block test: eight in a 256-bit vector where the build has AVX,
+/// four in glam's `Vec4` elsewhere (a block then takes two steps).
+trait Wide:
+    Copy
+    + std::ops::Add<Output = Self>
+    + std::ops::Sub<Output = Self>
+    + std::ops::Mul<Output = Self>
+    + std::ops::Div<Output = Self>
+{
+    /// All ones in the lanes where a comparison holds.
+    type Mask: Copy
+        + std::ops::BitAnd<Output = Self::Mask>
+        + std::ops::BitOr<Output = Self::Mask>
+        + std::ops::Not<Output = Self::Mask>;
+    const WIDTH: usize;
+    fn splat(x: f32) -> Self;
+    /// Lanes `from..from + WIDTH` of a block's row.
+    fn load(row: &[f32; LANES], from: usize) -> Self;
+    fn lt(self, other: Self) -> Self::Mask;
+    fn gt(self, other: Self) -> Self::Mask;
+    fn eq(self, other: Self) -> Self::Mask;
+    /// A bit per lane where `mask` holds.
+    fn bits(mask: Self::Mask) -> u32;
+    /// The lanes into `out[from..from + WIDTH]`.
+    fn store(self, out: &mut [f32; LANES], from: usize);
+}
+
+impl Wide for Vec4 {
+    type Mask = glam::BVec4A;
+    const WIDTH: usize = 4;
+    #[inline(always)]
+    fn splat(x: f32) -> Self {
+        Vec4::splat(x)
+    }
+    #[inline(always)]
+    fn load(row: &[f32; LANES], from: usize) -> Self {
+        Vec4::from_slice(&row[from.min(LANES - 4)..])
+    }
+    #[inline(always)]
+    fn lt(self, other: Self) -> Self::Mask {
+        self.cmplt(other)
+    }
+    #[inline(always)]
+    fn gt(self, other: Self) -> Self::Mask {
+        self.cmpgt(other)
+    }
+    #[inline(always)]
+    fn eq(self, other: Self) -> Self::Mask {
+        self.cmpeq(other)
+    }
+    #[inline(always)]
+    fn bits(mask: Self::Mask) -> u32 {
+        mask.bitmask()
+    }
+    #[inline(always)]
+    fn store(self, out: &mut [f32; LANES], from: usize) {
+        self.write_to_slice(&mut out[from.min(LANES - 4)..]);
+    }
+}
+
+/// Eight lanes in a 256-bit AVX vector.
+#[cfg(all(target_arch = "x86_64", target_feature = "avx"))]
+#[derive(Clone, Copy)]
+struct F8(safe_arch::m256);
+
+#[cfg(all(target_arch = "x86_64", target_feature = "avx"))]
+mod f8_ops {
+    use super::F8;
+    use safe_arch::*;
+    use std::ops::{Add, BitAnd, BitOr, Div, Mul, Not, Sub};
+    impl Add for F8 {
+        type Output = F8;
+        #[inline(always)]
+        fn add(self, o: F8) -> F8 {
+            F8(add_m256(self.0, o.0))
+        }
+    }
+    impl Sub for F8 {
+        type Output = F8;
+        #[inline(always)]
+        fn sub(self, o: F8) -> F8 {
+            F8(sub_m256(self.0, o.0))
+        }
+    }
+    impl Mul for F8 {
+        type Output = F8;
+        #[inline(always)]
+        fn mul(self, o: F8) -> F8 {
+            F8(mul_m256(self.0, o.0))
+        }
+    }
+    impl Div for F8 {
+        type Output = F8;
+        #[inline(always)]
+        fn div(self, o: F8) -> F8 {
+            F8(div_m256(self.0, o.0))
+        }
+    }
+    impl BitAnd for F8 {
+        type Output = F8;
+        #[inline(always)]
+        fn bitand(self, o: F8) -> F8 {
+            F8(bitand_m256(self.0, o.0))
+        }
+    }
+    impl BitOr for F8 {
+        type Output = F8;
+        #[inline(always)]
+        fn bitor(self, o: F8) -> F8 {
+            F8(bitor_m256(self.0, o.0))
+        }
+    }
+    impl Not for F8 {
+        type Output = F8;
+        #[inline(always)]
+        fn not(self) -> F8 {
+            F8(bitxor_m256(
+                self.0,
+                cast_to_m256_from_m256i(set_splat_i32_m256i(-1)),
+            ))
+        }
+    }
+    impl super::Wide for F8 {
+        type Mask = F8;
+        const WIDTH: usize = 8;
+        #[inline(always)]
+        fn splat(x: f32) -> Self {
+            F8(set_splat_m256(x))
+        }
+        #[inline(always)]
+        fn load(row: &[f32; super::LANES], _from: usize) -> Self {
+            F8(m256::from_array(*row))
+        }
+        #[inline(always)]
+        fn lt(self, o: Self) -> F8 {
+            F8(cmp_op_mask_m256::<{ cmp_op!(LessThanOrdered) }>(
+                self.0, o.0,
+            ))
+        }
+        #[inline(always)]
+        fn gt(self, o: Self) -> F8 {
+            F8(cmp_op_mask_m256::<{ cmp_op!(GreaterThanOrdered) }>(
+                self.0, o.0,
+            ))
+        }
+        #[inline(always)]
+        fn eq(self, o: Self) -> F8 {
+            F8(cmp_op_mask_m256::<{ cmp_op!(EqualOrdered) }>(self.0, o.0))
+        }
+        #[inline(always)]
+        fn bits(mask: F8) -> u32 {
+            move_mask_m256(mask.0) as u32
+        }
+        #[inline(always)]
+        fn store(self, out: &mut [f32; super::LANES], _from: usize) {
+            *out = self.0.to_array();
+        }
+    }
+}
+
+/// The watertight test for a block of triangles at once ([`TriangleBlock`]): each lane does
+/// the operations of [`WatertightRay::intersect`] in the same order, so it gives the same
+/// hits, to the bit.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct BlockRay {
     /// The axes `kx`, `ky`, `kz`.
     k: [usize; 3],
-    /// The origin's coordinates along `kx`, `ky`, `kz`, each in every lane.
-    origin: [Vec4; 3],
-    /// `sx`, `sy`, `sz`, each in every lane.
-    shear: [Vec4; 3],
+    /// The origin's coordinates along `kx`, `ky`, `kz`.
+    origin: [f32; 3],
+    /// `sx`, `sy`, `sz`.
+    shear: [f32; 3],
 }
 
 /// A block's hits, lane by lane ([`BlockRay::lanes`]).
 pub(crate) struct BlockHits {
     /// A bit per lane asked about and hit in `(0, t_max)`.
     pub(crate) mask: u32,
-    t: Vec4,
+    t: [f32; LANES],
     /// `1 / det`, and the edge functions of b and c (`v`, `w`): the weights are their
     /// products.
-    inv: Vec4,
-    v: Vec4,
-    w: Vec4,
+    inv: [f32; LANES],
+    v: [f32; LANES],
+    w: [f32; LANES],
 }
 
 impl BlockHits {
     /// The hit in `lane`: `(t, weight of b, weight of c)`, as [`WatertightRay::intersect`]
     /// gives it.
     pub(crate) fn get(&self, lane: usize) -> (f32, f32, f32) {
-        let l = lane & 3;
-        let inv = self.inv.to_array()[l];
-        (
-            self.t.to_array()[l],
-            self.v.to_array()[l] * inv,
-            self.w.to_array()[l] * inv,
-        )
+        let l = lane % LANES;
+        (self.t[l], self.v[l] * self.inv[l], self.w[l] * self.inv[l])
     }
 
     /// The nearest hit: its lane and `(t, weight of b, weight of c)`; of equal distances,
@@ -119,17 +276,14 @@ impl BlockHits {
             return None;
         }
         let mut rest = self.mask;
-        let mut lane = rest.trailing_zeros() as usize & 3;
+        let mut lane = rest.trailing_zeros() as usize % LANES;
         rest &= rest - 1;
-        if rest != 0 {
-            // More than one (rarely): the nearest, the first of equals.
-            let t = self.t.to_array();
-            while rest != 0 {
-                let l = rest.trailing_zeros() as usize & 3;
-                rest &= rest - 1;
-                if t[l] < t[lane] {
-                    lane = l;
-                }
+        // More than one (rarely): the nearest, the first of equals.
+        while rest != 0 {
+            let l = rest.trailing_zeros() as usize % LANES;
+            rest &= rest - 1;
+            if self.t[l] < self.t[lane] {
+                lane = l;
             }
         }
         Some((lane, self.get(lane)))
@@ -140,30 +294,89 @@ impl BlockRay {
     /// Prepares `ray` (any non-zero direction).
     #[inline]
     pub(crate) fn new(ray: &Ray) -> Self {
-        let (k, s) = shear_of(ray);
+        let (k, shear) = shear_of(ray);
         // An array, not the vector: indexing a glam vector by a variable is a `match`, three
         // branches that random directions mispredict.
         let o = ray.origin.to_array();
         BlockRay {
             k,
-            origin: k.map(|k| Vec4::splat(o[k])),
-            shear: s.map(Vec4::splat),
+            origin: k.map(|k| o[k]),
+            shear,
         }
     }
 
     /// The hits with `0 < t < t_max` of the block's triangles in the lanes `lanes` names
-    /// (a bit each).
+    /// (a bit each): in one step of eight lanes where the build has AVX.
+    #[cfg(all(target_arch = "x86_64", target_feature = "avx"))]
     #[inline(always)]
     pub(crate) fn lanes(&self, block: &TriangleBlock, lanes: u32, t_max: f32) -> BlockHits {
+        let mut hits = BlockHits {
+            mask: 0,
+            t: [0.0; LANES],
+            inv: [0.0; LANES],
+            v: [0.0; LANES],
+            w: [0.0; LANES],
+        };
+        hits.mask = self.step::<F8>(block, 0, lanes, t_max, &mut hits);
+        hits
+    }
+
+    /// [`BlockRay::lanes`] in two steps of four lanes, for builds without AVX.
+    #[cfg(any(test, not(all(target_arch = "x86_64", target_feature = "avx"))))]
+    #[inline(always)]
+    pub(crate) fn lanes_in_halves(
+        &self,
+        block: &TriangleBlock,
+        lanes: u32,
+        t_max: f32,
+    ) -> BlockHits {
+        let mut hits = BlockHits {
+            mask: 0,
+            t: [0.0; LANES],
+            inv: [0.0; LANES],
+            v: [0.0; LANES],
+            w: [0.0; LANES],
+        };
+        let mut mask = 0;
+        for from in [0, 4] {
+            if (lanes >> from) & 15 != 0 {
+                mask |=
+                    self.step::<Vec4>(block, from, (lanes >> from) & 15, t_max, &mut hits) << from;
+            }
+        }
+        hits.mask = mask;
+        hits
+    }
+
+    /// [`BlockRay::lanes`] without AVX.
+    #[cfg(not(all(target_arch = "x86_64", target_feature = "avx")))]
+    #[inline(always)]
+    pub(crate) fn lanes(&self, block: &TriangleBlock, lanes: u32, t_max: f32) -> BlockHits {
+        self.lanes_in_halves(block, lanes, t_max)
+    }
+
+    /// Lanes `from..from + W::WIDTH` of the block: their hits in `hits` (`t`, `inv`, `v`,
+    /// `w`), and a bit per lane asked about (in `lanes`, counted from `from`) and hit.
+    #[inline(always)]
+    fn step<W: Wide>(
+        &self,
+        block: &TriangleBlock,
+        from: usize,
+        lanes: u32,
+        t_max: f32,
+        hits: &mut BlockHits,
+    ) -> u32 {
         let [kx, ky, kz] = self.k.map(|k| k.min(2));
-        let [ox, oy, oz] = self.origin;
-        let [sx, sy, sz] = self.shear;
+        let [ox, oy, oz] = self.origin.map(W::splat);
+        let [sx, sy, sz] = self.shear.map(W::splat);
+        let zero = W::splat(0.0);
+        let row = |axis: usize, corner: usize| W::load(&block.v[axis][corner], from);
         // Each corner translated and sheared: (x - sx z, y - sy z, sz z).
         let corner = |c: usize| {
-            let z = block.v[kz][c] - oz;
+            let z = row(kz, c) - oz;
             (
-                (block.v[kx][c] - ox) - sx * z,
-                (block.v[ky][c] - oy) - sy * z,
+                (row(kx, c) - ox) - sx * z,
+                (row(ky, c) - oy) - sy * z,
                 sz * z,
             )
         };
@@ -173,42 +386,41 @@ impl BlockRay {
         let mut u = cx * by - cy * bx;
         let mut v = ax * cy - ay * cx;
         let mut w = bx * ay - by * ax;
-        let zero =
-            (u.cmpeq(Vec4::ZERO) | v.cmpeq(Vec4::ZERO) | w.cmpeq(Vec4::ZERO)).bitmask() & lanes;
-        if zero != 0 {
+        let on_edge = W::bits(u.eq(zero) | v.eq(zero) | w.eq(zero)) & lanes;
+        if on_edge != 0 {
             // A lane on (or within rounding of) an edge: decided in double precision, as
             // the scalar test does.
-            let [ax, ay, bx, by, cx, cy] = [ax, ay, bx, by, cx, cy].map(|c| c.to_array());
-            let (mut uu, mut vv, mut ww) = (u.to_array(), v.to_array(), w.to_array());
-            for l in 0..4 {
-                if zero & (1 << l) != 0 {
+            let mut a = [[0.0; LANES]; 9];
+            for (out, x) in a.iter_mut().zip([ax, ay, bx, by, cx, cy, u, v, w]) {
+                x.store(out, 0);
+            }
+            let [ax, ay, bx, by, cx, cy, mut uu, mut vv, mut ww] = a;
+            for l in 0..W::WIDTH {
+                if on_edge & (1 << l) != 0 {
                     uu[l] = exact_edge(cx[l], by[l], cy[l], bx[l]);
                     vv[l] = exact_edge(ax[l], cy[l], ay[l], cx[l]);
                     ww[l] = exact_edge(bx[l], ay[l], by[l], ax[l]);
                 }
             }
-            (u, v, w) = (uu.into(), vv.into(), ww.into());
+            (u, v, w) = (W::load(&uu, 0), W::load(&vv, 0), W::load(&ww, 0));
         }
-        let negative = u.cmplt(Vec4::ZERO) | v.cmplt(Vec4::ZERO) | w.cmplt(Vec4::ZERO);
-        let positive = u.cmpgt(Vec4::ZERO) | v.cmpgt(Vec4::ZERO) | w.cmpgt(Vec4::ZERO);
+        let negative = u.lt(zero) | v.lt(zero) | w.lt(zero);
+        let positive = u.gt(zero) | v.gt(zero) | w.gt(zero);
         let det = u + v + w;
         let t_scaled = u * az + v * bz + w * cz;
         // `finish`'s tests, lane by lane: t = t_scaled / det in (0, t_max), compared before
         // dividing (a NaN fails them all).
-        let limit = det * t_max;
-        let ahead = (det.cmpgt(Vec4::ZERO) & t_scaled.cmpgt(Vec4::ZERO) & t_scaled.cmplt(limit))
-            | (det.cmplt(Vec4::ZERO) & t_scaled.cmplt(Vec4::ZERO) & t_scaled.cmpgt(limit));
-        let inv = Vec4::ONE / det;
+        let limit = det * W::splat(t_max);
+        let ahead = (det.gt(zero) & t_scaled.gt(zero) & t_scaled.lt(limit))
+            | (det.lt(zero) & t_scaled.lt(zero) & t_scaled.gt(limit));
+        let inv = W::splat(1.0) / det;
         let t = t_scaled * inv;
-        let hit =
-            ahead & !(negative & positive) & t.cmpgt(Vec4::ZERO) & t.cmplt(Vec4::splat(t_max));
-        BlockHits {
-            mask: hit.bitmask() & lanes,
-            t,
-            inv,
-            v,
-            w,
-        }
+        let hit = ahead & !(negative & positive) & t.gt(zero) & t.lt(W::splat(t_max));
+        t.store(&mut hits.t, from);
+        inv.store(&mut hits.inv, from);
+        v.store(&mut hits.v, from);
+        w.store(&mut hits.w, from);
+        W::bits(hit) & lanes
     }
 }
 
