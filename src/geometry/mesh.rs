@@ -186,9 +186,9 @@ impl Mesh {
         let faces: Vec<[u32; 3]> = order.iter().map(|&i| triangles[i]).collect();
         let blocks = faces
             .chunks_exact(LANES)
-            .map(|four| {
+            .map(|lanes| {
                 TriangleBlock::new(&std::array::from_fn(|l| {
-                    four[l].map(|k| positions[k as usize].into())
+                    lanes[l].map(|k| positions[k as usize].into())
                 }))
             })
             .collect();
