@@ -135,103 +135,42 @@ impl Wide for Vec4 {
     }
 }
 
-/// Eight lanes in a 256-bit AVX vector.
+/// Eight lanes in a 256-bit AVX vector (safe_arch's `m256` has the arithmetic and bitwise
+/// operators already).
 #[cfg(all(target_arch = "x86_64", target_feature = "avx"))]
-#[derive(Clone, Copy)]
-struct F8(safe_arch::m256);
-
-#[cfg(all(target_arch = "x86_64", target_feature = "avx"))]
-mod f8_ops {
-    use super::F8;
-    use safe_arch::*;
-    use std::ops::{Add, BitAnd, BitOr, Div, Mul, Not, Sub};
-    impl Add for F8 {
-        type Output = F8;
-        #[inline(always)]
-        fn add(self, o: F8) -> F8 {
-            F8(add_m256(self.0, o.0))
-        }
+impl Wide for safe_arch::m256 {
+    type Mask = safe_arch::m256;
+    const WIDTH: usize = 8;
+    #[inline(always)]
+    fn splat(x: f32) -> Self {
+        safe_arch::set_splat_m256(x)
     }
-    impl Sub for F8 {
-        type Output = F8;
-        #[inline(always)]
-        fn sub(self, o: F8) -> F8 {
-            F8(sub_m256(self.0, o.0))
-        }
+    #[inline(always)]
+    fn load(row: &[f32; LANES], _from: usize) -> Self {
+        safe_arch::m256::from_array(*row)
     }
-    impl Mul for F8 {
-        type Output = F8;
-        #[inline(always)]
-        fn mul(self, o: F8) -> F8 {
-            F8(mul_m256(self.0, o.0))
-        }
+    #[inline(always)]
+    fn lt(self, o: Self) -> Self {
+        use safe_arch::{cmp_op, cmp_op_mask_m256};
+        cmp_op_mask_m256::<{ cmp_op!(LessThanOrdered) }>(self, o)
     }
-    impl Div for F8 {
-        type Output = F8;
-        #[inline(always)]
-        fn div(self, o: F8) -> F8 {
-            F8(div_m256(self.0, o.0))
-        }
+    #[inline(always)]
+    fn gt(self, o: Self) -> Self {
+        use safe_arch::{cmp_op, cmp_op_mask_m256};
+        cmp_op_mask_m256::<{ cmp_op!(GreaterThanOrdered) }>(self, o)
     }
-    impl BitAnd for F8 {
-        type Output = F8;
-        #[inline(always)]
-        fn bitand(self, o: F8) -> F8 {
-            F8(bitand_m256(self.0, o.0))
-        }
+    #[inline(always)]
+    fn eq(self, o: Self) -> Self {
+        use safe_arch::{cmp_op, cmp_op_mask_m256};
+        cmp_op_mask_m256::<{ cmp_op!(EqualOrdered) }>(self, o)
     }
-    impl BitOr for F8 {
-        type Output = F8;
-        #[inline(always)]
-        fn bitor(self, o: F8) -> F8 {
-            F8(bitor_m256(self.0, o.0))
-        }
+    #[inline(always)]
+    fn bits(mask: Self) -> u32 {
+        safe_arch::move_mask_m256(mask) as u32
     }
-    impl Not for F8 {
-        type Output = F8;
-        #[inline(always)]
-        fn not(self) -> F8 {
-            F8(bitxor_m256(
-                self.0,
-                cast_to_m256_from_m256i(set_splat_i32_m256i(-1)),
-            ))
-        }
-    }
-    impl super::Wide for F8 {
-        type Mask = F8;
-        const WIDTH: usize = 8;
-        #[inline(always)]
-        fn splat(x: f32) -> Self {
-            F8(set_splat_m256(x))
-        }
-        #[inline(always)]
-        fn load(row: &[f32; super::LANES], _from: usize) -> Self {
-            F8(m256::from_array(*row))
-        }
-        #[inline(always)]
-        fn lt(self, o: Self) -> F8 {
-            F8(cmp_op_mask_m256::<{ cmp_op!(LessThanOrdered) }>(
-                self.0, o.0,
-            ))
-        }
-        #[inline(always)]
-        fn gt(self, o: Self) -> F8 {
-            F8(cmp_op_mask_m256::<{ cmp_op!(GreaterThanOrdered) }>(
-                self.0, o.0,
-            ))
-        }
-        #[inline(always)]
-        fn eq(self, o: Self) -> F8 {
-            F8(cmp_op_mask_m256::<{ cmp_op!(EqualOrdered) }>(self.0, o.0))
-        }
-        #[inline(always)]
-        fn bits(mask: F8) -> u32 {
-            move_mask_m256(mask.0) as u32
-        }
-        #[inline(always)]
-        fn store(self, out: &mut [f32; super::LANES], _from: usize) {
-            *out = self.0.to_array();
-        }
+    #[inline(always)]
+    fn store(self, out: &mut [f32; LANES], _from: usize) {
+        *out = self.to_array();
     }
 }
 
@@ -317,7 +256,7 @@ impl BlockRay {
             v: [0.0; LANES],
             w: [0.0; LANES],
         };
-        hits.mask = self.step::<F8>(block, 0, lanes, t_max, &mut hits);
+        hits.mask = self.step::<safe_arch::m256>(block, 0, lanes, t_max, &mut hits);
         hits
     }
 
