@@ -1545,28 +1545,34 @@ mod tests {
         assert!((n[3] - Vec3::X).length() < 1e-6);
     }
 
+    /// A soup of `count` separate small triangles in the cube [-1, 1]^3: each has its corners
+    /// within `size` of a random centre along each axis.
+    fn soup(rng: &mut Rng, count: u32, size: f32) -> MeshInput {
+        let mut r = |lo: f32, hi: f32| lo + (hi - lo) * rng.next_f32();
+        let mut positions = vec![];
+        let mut triangles = vec![];
+        for i in 0..count {
+            let c = Vec3::new(r(-1.0, 1.0), r(-1.0, 1.0), r(-1.0, 1.0));
+            for _ in 0..3 {
+                positions.push(c + Vec3::new(r(-size, size), r(-size, size), r(-size, size)));
+            }
+            triangles.push([3 * i, 3 * i + 1, 3 * i + 2]);
+        }
+        MeshInput {
+            positions,
+            triangles,
+            ..MeshInput::default()
+        }
+    }
+
     /// Leaves share blocks: each leaf's lanes lie in one block, no lane belongs to two
     /// leaves, and the leaves' lanes hold every triangle once; lanes no leaf names repeat
     /// one of their block's.
     #[test]
     fn leaves_are_packed_into_blocks_and_hold_every_triangle_once() {
-        let mut rng = Rng::new(5);
-        let mut r = |lo: f32, hi: f32| lo + (hi - lo) * rng.next_f32();
-        let mut positions = vec![];
-        let mut triangles = vec![];
-        for i in 0..2000u32 {
-            let c = Vec3::new(r(-1.0, 1.0), r(-1.0, 1.0), r(-1.0, 1.0));
-            for _ in 0..3 {
-                positions.push(c + Vec3::new(r(-0.1, 0.1), r(-0.1, 0.1), r(-0.1, 0.1)));
-            }
-            triangles.push([3 * i, 3 * i + 1, 3 * i + 2]);
-        }
-        let (m, dropped) = Mesh::new(MeshInput {
-            positions,
-            triangles: triangles.clone(),
-            ..MeshInput::default()
-        })
-        .unwrap();
+        let input = soup(&mut Rng::new(5), 2000, 0.1);
+        let triangles = input.triangles.clone();
+        let (m, dropped) = Mesh::new(input).unwrap();
         assert_eq!(dropped, 0);
         let mut owner = vec![None; m.faces.len()];
         let mut leaves = 0;
@@ -1616,22 +1622,8 @@ mod tests {
         // and the order of visits matters; rays from inside and outside it, in random
         // directions and along the axes (zero and minus-zero components).
         let mut rng = Rng::new(17);
+        let (m, _) = Mesh::new(soup(&mut rng, 3000, 0.2)).unwrap();
         let mut r = |lo: f32, hi: f32| lo + (hi - lo) * rng.next_f32();
-        let mut positions = vec![];
-        let mut triangles = vec![];
-        for i in 0..3000u32 {
-            let c = Vec3::new(r(-1.0, 1.0), r(-1.0, 1.0), r(-1.0, 1.0));
-            for _ in 0..3 {
-                positions.push(c + Vec3::new(r(-0.2, 0.2), r(-0.2, 0.2), r(-0.2, 0.2)));
-            }
-            triangles.push([3 * i, 3 * i + 1, 3 * i + 2]);
-        }
-        let (m, _) = Mesh::new(MeshInput {
-            positions,
-            triangles,
-            ..MeshInput::default()
-        })
-        .unwrap();
         let (mut hits, mut misses) = (0, 0);
         for case in 0..3000 {
             let o = Vec3A::new(r(-1.5, 1.5), r(-1.5, 1.5), r(-1.5, 1.5));
