@@ -188,6 +188,7 @@ pub(crate) struct BlockRay {
 }
 
 /// A block's hits, lane by lane ([`BlockRay::lanes`]).
+#[derive(Default)]
 pub(crate) struct BlockHits {
     /// A bit per lane asked about and hit in `(0, t_max)`.
     pub(crate) mask: u32,
@@ -249,13 +250,7 @@ impl BlockRay {
     #[cfg(all(target_arch = "x86_64", target_feature = "avx"))]
     #[inline(always)]
     pub(crate) fn lanes(&self, block: &TriangleBlock, lanes: u32, t_max: f32) -> BlockHits {
-        let mut hits = BlockHits {
-            mask: 0,
-            t: [0.0; LANES],
-            inv: [0.0; LANES],
-            v: [0.0; LANES],
-            w: [0.0; LANES],
-        };
+        let mut hits = BlockHits::default();
         hits.mask = self.step::<safe_arch::m256>(block, 0, lanes, t_max, &mut hits);
         hits
     }
@@ -269,13 +264,7 @@ impl BlockRay {
         lanes: u32,
         t_max: f32,
     ) -> BlockHits {
-        let mut hits = BlockHits {
-            mask: 0,
-            t: [0.0; LANES],
-            inv: [0.0; LANES],
-            v: [0.0; LANES],
-            w: [0.0; LANES],
-        };
+        let mut hits = BlockHits::default();
         let mut mask = 0;
         for from in [0, 4] {
             if (lanes >> from) & 15 != 0 {
