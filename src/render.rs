@@ -39,6 +39,8 @@ pub struct Rendered {
     pub tiles_done: u32,
     /// Tiles in all.
     pub tiles_total: u32,
+    /// Pixels rendered in this run (those of tiles from an earlier run not counted).
+    pub pixels_rendered: u64,
 }
 
 impl Rendered {
@@ -231,12 +233,14 @@ pub fn render_with(
     }
     // In tile index order, so the examples are the same at any thread count.
     let mut ordered: Vec<(u32, BadSamples)> = vec![];
+    let mut pixels_rendered = 0;
     for (k, t) in tiles.iter().enumerate() {
         let Some((tile, tile_rays, tile_bad)) = t else {
             continue;
         };
         let i = tile_of(k as u32);
         rays += *tile_rays;
+        pixels_rendered += tile.len() as u64;
         if tile_bad.count > 0 {
             ordered.push((i, tile_bad.clone()));
         }
@@ -275,6 +279,7 @@ pub fn render_with(
         bad_samples,
         tiles_done: finished,
         tiles_total: n,
+        pixels_rendered,
     })
 }
 

@@ -260,9 +260,27 @@ fn unwritable_output_exits_1_and_keeps_the_old_image() {
     let broken = write_scene(&dir, "broken.toml", "[camera\n");
     expect(&["render", &broken, "-o", "keep.png"], &dir, 2);
     assert_eq!(std::fs::read(dir.join("keep.png")).unwrap(), b"old bytes");
-    // Writing over a folder fails at the rename, and removes its temporary file.
+    // A folder in the way is refused before rendering (the render's progress would be
+    // written first), and no temporary file is left.
     std::fs::create_dir(dir.join("taken.png")).unwrap();
-    expect(&["render", &scene, "-o", "taken.png"], &dir, 1);
+    let err = stderr(&expect(
+        &["render", &scene, "-o", "taken.png", "--stats"],
+        &dir,
+        1,
+    ));
+    assert!(
+        err.contains("cannot write taken.png: it is a folder"),
+        "{err}"
+    );
+    let err = stderr(&expect(
+        &["render", &scene, "-o", "no/such/folder/x.png"],
+        &dir,
+        1,
+    ));
+    assert!(
+        err.contains("the folder no/such/folder does not exist"),
+        "{err}"
+    );
     let tmp = std::fs::read_dir(&dir)
         .unwrap()
         .filter_map(|e| e.ok())

@@ -127,14 +127,19 @@ fn an_interrupted_render_resumes_to_the_same_bytes() {
     let out = child.wait_with_output().unwrap();
     let err = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(130), "{err}");
-    assert!(err.contains("interrupted: wrote part.png with"), "{err}");
+    assert!(
+        err.contains("interrupted: wrote part.partial.png with"),
+        "{err}"
+    );
+    assert!(err.contains("part.png was not written"), "{err}");
     assert!(err.contains("snell render --resume c.ckpt"), "{err}");
-    // The partial image is a valid picture of the right size.
-    let part = image::open(dir.join("part.png")).unwrap();
+    // The partial image is a valid picture of the right size, beside the destination.
+    let part = image::open(dir.join("part.partial.png")).unwrap();
     assert_eq!((part.width(), part.height()), (384, 384));
+    assert!(!dir.join("part.png").exists());
     // Resume from the checkpoint alone: scene, size, samples and output come from it.
     let resumed = snell()
-        .args(["render", "--resume", "c.ckpt", "-q"])
+        .args(["render", "--resume", "c.ckpt"])
         .current_dir(&dir)
         .output()
         .unwrap();
@@ -153,6 +158,102 @@ fn an_interrupted_render_resumes_to_the_same_bytes() {
         !dir.join("c.ckpt").exists(),
         "a finished render removes its checkpoint"
     );
+    assert!(
+        !dir.join("part.partial.png").exists(),
+        "a finished render removes the partial picture of the same output"
+    );
+    // The resumed run's rate counts the samples of this run, not the whole image's.
+    let said = String::from_utf8_lossy(&resumed.stdout);
+    let this_run: u64 = said
+        .split_once("2359296 samples (")
+        .and_then(|(_, rest)| rest.split_once(" of them in this run)"))
+        .and_then(|(n, _)| n.parse().ok())
+        .unwrap_or_else(|| panic!("no count of this run's samples in: {said}"));
+    assert!(this_run > 0 && this_run < 384 * 384 * 16, "{said}");
+    assert_eq!(this_run % 16, 0, "whole pixels of 16 samples: {said}");
+}
+
+/// Starts a render of the seed scene that takes minutes, to be interrupted: `size` pixels
+/// square at `spp` samples.
+fn long_render(dir: &Path, out: &str, size: u32, spp: u32) -> std::process::Child {
+    let scene = super::repo("scenes/seed.toml");
+    let (size, spp) = (size.to_string(), spp.to_string());
+    Command::new(env!("CARGO_BIN_EXE_snell"))
+        .args(["render", scene.to_str().unwrap(), "-o", out])
+        .args(["--width", &size, "--height", &size, "--spp", &spp])
+        .current_dir(dir)
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap()
+}
+
+fn signal(child: &std::process::Child, sig: &str) {
+    let sent = Command::new("kill")
+        .args([sig, &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(sent.success());
+}
+
+/// Waits until the render has started (its temporary file exists).
+fn wait_for_tmp(dir: &Path) {
+    let start = std::time::Instant::now();
+    while files(dir).iter().all(|f| !f.ends_with(".tmp")) {
+        assert!(start.elapsed().as_secs() < 60, "no temporary file appeared");
+        std::thread::sleep(std::time::Duration::from_millis(5));
+    }
+}
+
+fn files(dir: &Path) -> Vec<String> {
+    let mut v: Vec<String> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    v.sort();
+    v
+}
+
+#[test]
+fn an_interrupted_render_never_overwrites_the_old_image() {
+    let dir = scratch("keep-old");
+    std::fs::write(dir.join("keep.png"), b"a good old picture").unwrap();
+    let child = long_render(&dir, "keep.png", 512, 1024);
+    wait_for_tmp(&dir);
+    std::thread::sleep(std::time::Duration::from_millis(300));
+    signal(&child, "-INT");
+    let out = child.wait_with_output().unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(130), "{err}");
+    assert!(
+        err.contains("interrupted: wrote keep.partial.png with")
+            && err.contains("keep.png was left as it was"),
+        "{err}"
+    );
+    assert_eq!(
+        std::fs::read(dir.join("keep.png")).unwrap(),
+        b"a good old picture"
+    );
+    let part = image::open(dir.join("keep.partial.png")).unwrap();
+    assert_eq!((part.width(), part.height()), (512, 512));
+    assert_eq!(files(&dir), ["keep.partial.png", "keep.png"]);
+}
+
+#[test]
+fn a_second_interrupt_leaves_no_temporary_file() {
+    let dir = scratch("two-interrupts");
+    // Tiles of 16 x 16 pixels at 65,536 samples take seconds each: the first interrupt waits
+    // for them, and the second comes while it does.
+    let child = long_render(&dir, "keep.png", 64, 65536);
+    wait_for_tmp(&dir);
+    signal(&child, "-INT");
+    std::thread::sleep(std::time::Duration::from_millis(50));
+    signal(&child, "-INT");
+    let out = child.wait_with_output().unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(130), "{err}");
+    assert!(err.contains("interrupted again"), "{err}");
+    assert!(files(&dir).is_empty(), "left behind: {:?}", files(&dir));
 }
 
 #[test]

@@ -2,9 +2,10 @@
 //! extension, always through a temporary file in the same folder that is renamed into place,
 //! so a failed render never leaves a broken image or destroys an old one.
 
+pub mod atomic;
+
 use crate::film::Image;
-use std::fs::File;
-use std::io::Write;
+use atomic::PendingFile;
 use std::path::{Path, PathBuf};
 
 /// Image file formats snell writes.
@@ -166,49 +167,24 @@ pub fn encode_exr_layers(
     Ok(bytes)
 }
 
-/// An output file reserved before rendering: a temporary file beside the destination,
-/// created up front so an unwritable destination fails before the work starts. Dropping it
-/// without [`PendingOutput::commit`] removes the temporary file and leaves any old image alone.
+/// An image file reserved before rendering: its format checked and its temporary file
+/// created up front (see [`atomic::PendingFile`]), so a bad or unwritable destination fails
+/// before the work starts. Dropping it without committing leaves any old image alone.
 #[derive(Debug)]
 pub struct PendingOutput {
-    path: PathBuf,
-    tmp: PathBuf,
-    file: Option<File>,
+    file: PendingFile,
     format: OutputFormat,
-    /// Set once the temporary file has been renamed into place.
-    renamed: bool,
 }
 
 impl PendingOutput {
-    /// Checks the format and creates the temporary file.
+    /// Checks the format and the destination, and creates the temporary file.
     pub fn create(path: &Path) -> Result<Self, OutputError> {
         let format = OutputFormat::from_path(path)?;
-        let io = |source| OutputError::Io {
+        let file = PendingFile::create(path).map_err(|source| OutputError::Io {
             path: path.to_path_buf(),
             source,
-        };
-        let name = path.file_name().ok_or_else(|| {
-            io(std::io::Error::new(
-                std::io::ErrorKind::InvalidInput,
-                "not a file name",
-            ))
         })?;
-        let dir = match path.parent() {
-            Some(d) if !d.as_os_str().is_empty() => d.to_path_buf(),
-            _ => PathBuf::from("."),
-        };
-        let mut tmp_name = std::ffi::OsString::from(".");
-        tmp_name.push(name);
-        tmp_name.push(format!(".{}.tmp", std::process::id()));
-        let tmp = dir.join(tmp_name);
-        let file = File::create(&tmp).map_err(io)?;
-        Ok(PendingOutput {
-            path: path.to_path_buf(),
-            tmp,
-            file: Some(file),
-            format,
-            renamed: false,
-        })
+        Ok(PendingOutput { file, format })
     }
 
     /// The format the destination's name asks for.
@@ -218,39 +194,44 @@ impl PendingOutput {
 
     /// The destination.
     pub fn path(&self) -> &Path {
-        &self.path
+        self.file.path()
+    }
+
+    /// Writes to [`partial_path`] of the destination instead: an unfinished picture never
+    /// replaces a finished one.
+    pub fn make_partial(&mut self) {
+        let partial = partial_path(self.file.path());
+        if let Some(name) = partial.file_name() {
+            self.file.redirect(name);
+        }
     }
 
     /// Encodes the image, writes it to the temporary file, flushes it to disk and renames it
     /// over the destination.
     pub fn commit(self, img: &Image) -> Result<(), OutputError> {
-        let bytes = encode(img, self.format, &self.path)?;
+        let bytes = encode(img, self.format, self.path())?;
         self.commit_bytes(&bytes)
     }
 
     /// Writes already encoded bytes (in this output's format) and renames them into place.
-    pub fn commit_bytes(mut self, bytes: &[u8]) -> Result<(), OutputError> {
-        let io = |source| OutputError::Io {
-            path: self.path.clone(),
-            source,
-        };
-        let mut file = self.file.take().expect("commit runs once");
-        file.write_all(bytes).map_err(io)?;
-        file.sync_all().map_err(io)?;
-        drop(file);
-        std::fs::rename(&self.tmp, &self.path).map_err(io)?;
-        self.renamed = true;
-        Ok(())
+    pub fn commit_bytes(self, bytes: &[u8]) -> Result<(), OutputError> {
+        let path = self.path().to_path_buf();
+        self.file
+            .commit(bytes)
+            .map_err(|source| OutputError::Io { path, source })
     }
 }
 
-impl Drop for PendingOutput {
-    fn drop(&mut self) {
-        if !self.renamed {
-            drop(self.file.take());
-            let _ = std::fs::remove_file(&self.tmp);
-        }
+/// Where an interrupted render writes its picture: `NAME.partial.EXT` beside `NAME.EXT`
+/// (`keep.png` gives `keep.partial.png`, `a.b.exr` gives `a.b.partial.exr`).
+pub fn partial_path(path: &Path) -> PathBuf {
+    let mut name = path.file_stem().unwrap_or_default().to_os_string();
+    name.push(".partial");
+    if let Some(ext) = path.extension() {
+        name.push(".");
+        name.push(ext);
     }
+    path.with_file_name(name)
 }
 
 /// Writes `img` to `path` atomically (format from the extension).
@@ -294,6 +275,18 @@ mod tests {
                 assert_eq!(bytes[3 * i + k], expected, "pixel {i}, channel {k}");
             }
         }
+    }
+
+    #[test]
+    fn partial_pictures_go_beside_the_destination() {
+        assert_eq!(
+            partial_path(Path::new("keep.png")),
+            Path::new("keep.partial.png")
+        );
+        assert_eq!(
+            partial_path(Path::new("out/a.b.exr")),
+            Path::new("out/a.b.partial.exr")
+        );
     }
 
     #[test]

@@ -1,0 +1,146 @@
+//! The command line's arguments, as clap parses them, and the parsers of their values.
+
+use clap::Args;
+use snell::integrator::aov::Aov;
+use snell::scene::Limits;
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+#[derive(Args, Debug)]
+pub(crate) struct RenderArgs {
+    /// The scene file (.toml or .json); with --resume, the checkpoint names it.
+    #[arg(required_unless_present = "resume")]
+    pub(crate) scene: Option<PathBuf>,
+    /// Output image; .png or .exr picks the format [default: the scene's name with .png,
+    /// in the current folder].
+    #[arg(short, long, value_name = "OUT")]
+    pub(crate) output: Option<PathBuf>,
+    /// Image width in pixels (overrides the scene).
+    #[arg(long, value_name = "W")]
+    pub(crate) width: Option<u32>,
+    /// Image height in pixels (overrides the scene).
+    #[arg(long, value_name = "H")]
+    pub(crate) height: Option<u32>,
+    /// Samples per pixel, a square number: 1, 4, 9, 16 ... (n x n stratified, jittered).
+    #[arg(long, value_name = "N")]
+    pub(crate) spp: Option<u32>,
+    /// Render threads [default: every core]. The image is the same at any count.
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u16).range(1..))]
+    pub(crate) threads: Option<u16>,
+    /// Seed of the sample jitter; the same seed gives the same bytes.
+    #[arg(long, value_name = "S")]
+    pub(crate) seed: Option<u64>,
+    /// Print nothing but errors.
+    #[arg(short, long)]
+    pub(crate) quiet: bool,
+    /// After rendering, print what the scene cost to load and build (meshes, BVH memory)
+    /// and how many rays of each kind were traced, per second.
+    #[arg(long)]
+    pub(crate) stats: bool,
+    /// Debug views to write besides the picture, comma-separated: normal, uv, depth,
+    /// albedo, object, material, bounces, or all. With a .png output each goes to its own
+    /// file (seed.normal.png ...); with .exr, all go into the one file as layers.
+    #[arg(long, value_name = "NAMES", value_delimiter = ',', value_parser = parse_aov)]
+    pub(crate) aov: Vec<Vec<Aov>>,
+    /// Save progress to FILE while rendering (and when interrupted), so the render can be
+    /// continued with --resume FILE. Removed once the render is complete.
+    #[arg(long, value_name = "FILE")]
+    pub(crate) checkpoint: Option<PathBuf>,
+    /// Continue the render saved in FILE (scene, size, samples, seed and output come from
+    /// it); the result is the same, byte for byte, as a render never stopped.
+    #[arg(long, value_name = "FILE")]
+    pub(crate) resume: Option<PathBuf>,
+    /// Seconds between checkpoints.
+    #[arg(long, value_name = "SECS", default_value_t = 30.0)]
+    pub(crate) checkpoint_every: f64,
+    #[command(flatten)]
+    pub(crate) limits: LimitArgs,
+}
+
+fn parse_aov(s: &str) -> Result<Vec<Aov>, String> {
+    if s == "all" {
+        return Ok(Aov::ALL.to_vec());
+    }
+    Aov::from_name(s).map(|a| vec![a]).ok_or_else(|| {
+        let names: Vec<&str> = Aov::ALL.iter().map(|a| a.name()).collect();
+        format!("`{s}` is not a debug view: use {} or all", names.join(", "))
+    })
+}
+
+#[derive(Args, Debug)]
+pub(crate) struct ExplainArgs {
+    /// The scene file (.toml or .json).
+    pub(crate) scene: PathBuf,
+    /// The pixel: column and row from the top-left corner, from 0.
+    #[arg(long, value_name = "X,Y", value_parser = parse_pixel)]
+    pub(crate) pixel: (u32, u32),
+    /// Which of the pixel's samples, from 0 (in the order the renderer takes them) [default:
+    /// the ray through the pixel's centre].
+    #[arg(long, value_name = "K")]
+    pub(crate) sample: Option<u32>,
+    /// Image width in pixels (overrides the scene; pixel coordinates depend on it).
+    #[arg(long, value_name = "W")]
+    pub(crate) width: Option<u32>,
+    /// Image height in pixels (overrides the scene).
+    #[arg(long, value_name = "H")]
+    pub(crate) height: Option<u32>,
+    /// Samples per pixel (overrides the scene; `--sample` counts up to it).
+    #[arg(long, value_name = "N")]
+    pub(crate) spp: Option<u32>,
+    /// Print the tree as JSON, for tools.
+    #[arg(long)]
+    pub(crate) json: bool,
+    /// Most rays shown; the rest of a bigger tree is counted, and the cut is said.
+    #[arg(long, value_name = "N", default_value_t = 200)]
+    pub(crate) max_rays: usize,
+    #[command(flatten)]
+    pub(crate) limits: LimitArgs,
+}
+
+/// Raising the limits a scene and a render are checked against.
+#[derive(Args, Debug)]
+pub(crate) struct LimitArgs {
+    /// Most pixels in the image [default: 268435456, 16384 x 16384].
+    #[arg(long, value_name = "N")]
+    pub(crate) max_pixels: Option<u64>,
+    /// Most samples per pixel [default: 65536].
+    #[arg(long, value_name = "N")]
+    pub(crate) max_spp: Option<u32>,
+    /// Longest ray chain a scene may ask for with max_depth [default: 64; at most 256].
+    #[arg(long, value_name = "N")]
+    pub(crate) max_depth: Option<u32>,
+    /// Most texels in one image texture [default: 268435456].
+    #[arg(long, value_name = "N")]
+    pub(crate) max_texture_pixels: Option<u64>,
+    /// Most triangles in all the scene's meshes [default: 268435456].
+    #[arg(long, value_name = "N")]
+    pub(crate) max_triangles: Option<u64>,
+}
+
+impl LimitArgs {
+    /// The limits, or a usage error when one is raised past what snell can do.
+    pub(crate) fn get(&self) -> Result<Limits, ExitCode> {
+        let d = Limits::default();
+        let l = Limits {
+            max_pixels: self.max_pixels.unwrap_or(d.max_pixels),
+            max_spp: self.max_spp.unwrap_or(d.max_spp),
+            max_depth: self.max_depth.unwrap_or(d.max_depth),
+            max_texture_pixels: self.max_texture_pixels.unwrap_or(d.max_texture_pixels),
+            max_triangles: self.max_triangles.unwrap_or(d.max_triangles),
+        };
+        l.check().map_err(|e| crate::usage_error(&e, None))?;
+        Ok(l)
+    }
+}
+
+fn parse_pixel(s: &str) -> Result<(u32, u32), String> {
+    let (x, y) = s
+        .split_once(',')
+        .ok_or_else(|| format!("`{s}` is not X,Y (for example 512,300)"))?;
+    let n = |v: &str| {
+        v.trim()
+            .parse::<u32>()
+            .map_err(|_| format!("`{v}` is not a pixel coordinate (a whole number from 0)"))
+    };
+    Ok((n(x)?, n(y)?))
+}

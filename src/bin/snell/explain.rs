@@ -1,0 +1,111 @@
+//! `snell explain`: the tree of rays behind one sample of one pixel.
+
+use crate::args::ExplainArgs;
+use crate::{check_size_and_spp, load, usage_error};
+use snell::integrator::Whitted;
+use snell::integrator::explain::TreeRecorder;
+use std::process::ExitCode;
+
+pub(crate) fn explain(args: ExplainArgs) -> ExitCode {
+    let limits = match args.limits.get() {
+        Ok(l) => l,
+        Err(code) => return code,
+    };
+    let mut scene = match load(&args.scene, &limits) {
+        Ok(s) => s,
+        Err(code) => return code,
+    };
+    let s = &mut scene.settings;
+    s.width = args.width.unwrap_or(s.width);
+    s.height = args.height.unwrap_or(s.height);
+    s.spp = args.spp.unwrap_or(s.spp);
+    if let Err(code) = check_size_and_spp(s, &limits) {
+        return code;
+    }
+    let (x, y) = args.pixel;
+    if x >= s.width || y >= s.height {
+        return usage_error(
+            &format!(
+                "pixel {x},{y} is outside the {} x {} image",
+                s.width, s.height
+            ),
+            Some(&format!(
+                "columns go from 0 to {}, rows from 0 to {}",
+                s.width - 1,
+                s.height - 1
+            )),
+        );
+    }
+    let film = match args.sample {
+        None => (x as f32 + 0.5, y as f32 + 0.5),
+        Some(k) if k >= s.spp => {
+            return usage_error(
+                &format!("sample {k} does not exist: the pixel has {} samples", s.spp),
+                Some(&format!("use --sample 0 to {}, or --spp", s.spp - 1)),
+            );
+        }
+        Some(k) => {
+            let mut at = (0.0, 0.0);
+            let mut i = 0;
+            snell::render::for_each_sample(s, x, y, |px, py, _| {
+                if i == k {
+                    at = (px, py);
+                }
+                i += 1;
+            });
+            at
+        }
+    };
+    let ray = scene.camera.ray(film.0, film.1, s.width, s.height);
+    let mut rec = TreeRecorder::new(args.max_rays);
+    let mut rays = snell::integrator::RayStats::default();
+    let color = Whitted.explain(&scene, &ray, &mut rays, &mut rec);
+    let Some(tree) = rec.finish() else {
+        eprintln!("error: no ray was recorded");
+        return ExitCode::from(1);
+    };
+    let which = match args.sample {
+        None => "the ray through its centre".to_string(),
+        Some(k) => format!("sample {k} of {}", scene.settings.spp),
+    };
+    if args.json {
+        let doc = serde_json::json!({
+            "scene": args.scene.display().to_string(),
+            "image": [scene.settings.width, scene.settings.height],
+            "pixel": [x, y],
+            "sample": args.sample,
+            "film_position": [film.0, film.1],
+            "color": color.to_array(),
+            "rays_traced": { "camera": rays.camera, "secondary": rays.secondary, "shadow": rays.shadow },
+            "tree": tree,
+        });
+        match serde_json::to_string_pretty(&doc) {
+            Ok(text) => outln!("{text}"),
+            Err(e) => {
+                eprintln!("error: {e}");
+                return ExitCode::from(1);
+            }
+        }
+    } else {
+        outln!(
+            "pixel {x},{y} of {} ({} x {}), {which}, film position ({}, {}):",
+            args.scene.display(),
+            scene.settings.width,
+            scene.settings.height,
+            film.0,
+            film.1
+        );
+        out!("{}", tree.to_text());
+        outln!(
+            "{} rays traced ({} camera, {} reflected or refracted, {} shadow); the sample's colour is ({}, {}, {}) in linear RGB",
+            rays.camera + rays.secondary + rays.shadow,
+            rays.camera,
+            rays.secondary,
+            rays.shadow,
+            color.x,
+            color.y,
+            color.z
+        );
+    }
+    ExitCode::SUCCESS
+}

@@ -1,0 +1,177 @@
+//! The `snell` command line: parse arguments, call the library, print, and map errors to
+//! exit codes (0 done, 1 render or write failed, 2 bad command line or scene).
+
+use clap::{Parser, Subcommand};
+use snell::scene::{Limits, RenderSettings, SceneError};
+use std::io::IsTerminal;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+/// `print!` that never panics: output cut short (a closed pipe, as with `| head`) is not
+/// an error worth a crash, so write failures are ignored.
+macro_rules! out {
+    ($($arg:tt)*) => {{
+        use std::io::Write as _;
+        let _ = write!(std::io::stdout().lock(), $($arg)*);
+    }};
+}
+
+/// `println!` that never panics (see `out!`).
+macro_rules! outln {
+    ($($arg:tt)*) => {{
+        use std::io::Write as _;
+        let _ = writeln!(std::io::stdout().lock(), $($arg)*);
+    }};
+}
+
+mod args;
+mod explain;
+mod render;
+
+use args::{ExplainArgs, LimitArgs, RenderArgs};
+
+const EXAMPLES: &str = "\
+Examples:
+  snell render scenes/seed.toml                 writes seed.png at the scene's size
+  snell render scenes/seed.toml -o seed.exr     linear floating-point EXR instead of PNG
+  snell render scenes/seed.toml --width 256 --height 256 --spp 1
+                                                a quick low-resolution preview
+  snell render scenes/seed.toml --spp 16 --threads 1 --seed 7
+                                                4 x 4 anti-aliasing on one core, another jitter
+  snell check scenes/seed.toml                  validate a scene and print a summary
+  snell explain scenes/seed.toml --pixel 512,760
+                                                the tree of rays behind one pixel
+
+Exit codes: 0 done, 1 rendering or writing failed, 2 bad command line or scene,
+130 interrupted (Ctrl-C or SIGTERM; the tiles finished were written).
+The scene format is documented key by key in docs/scene-format.md.";
+
+/// snell renders images from scene files (TOML or JSON) by ray tracing.
+#[derive(Parser, Debug)]
+#[command(name = "snell", version, after_help = EXAMPLES)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand, Debug)]
+enum Command {
+    /// Render a scene to a PNG (sRGB, 8-bit) or EXR (linear, float) image.
+    ///
+    /// Command-line values override the scene's [image] table. The picture is written to a
+    /// temporary file and renamed into place, so a failed render never leaves a broken image.
+    #[command(after_help = EXAMPLES)]
+    Render(RenderArgs),
+    /// Check a scene without rendering: report every problem with its line and column, or
+    /// print a summary (objects, lights, textures) and any warnings.
+    Check {
+        /// The scene file (.toml or .json).
+        scene: PathBuf,
+        #[command(flatten)]
+        limits: LimitArgs,
+    },
+    /// Explain one pixel: print the tree of rays behind one of its samples, with what each
+    /// ray hit, the material's terms, every light and its shadow ray, the Fresnel split and
+    /// the colour each ray returns.
+    Explain(ExplainArgs),
+    /// Print the scene format's JSON Schema, for editors: `snell schema > snell.schema.json`.
+    ///
+    /// With it, editors complete keys and flag mistakes in scene files as one types;
+    /// docs/scene-format.md ("Editor support") shows how to hook it up.
+    Schema,
+}
+
+fn main() -> ExitCode {
+    // A decoder panic on a corrupt texture is caught and reported as a scene error; the
+    // default hook would print it as if snell had crashed.
+    let default_hook = std::panic::take_hook();
+    std::panic::set_hook(Box::new(move |info| {
+        if !snell::texture::in_guarded_decoder() {
+            default_hook(info)
+        }
+    }));
+    let cli = Cli::parse();
+    match cli.command {
+        Command::Render(args) => render::render(args),
+        Command::Check { scene, limits } => match limits.get() {
+            Ok(l) => check(&scene, &l),
+            Err(code) => code,
+        },
+        Command::Explain(args) => explain::explain(args),
+        Command::Schema => schema(),
+    }
+}
+
+fn schema() -> ExitCode {
+    use std::io::Write;
+    let text = serde_json::to_string_pretty(&snell::scene::schema())
+        .expect("a JSON value always serializes");
+    // writeln, not println: `snell schema | head` must not panic on the closed pipe.
+    match writeln!(std::io::stdout(), "{text}") {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(_) => ExitCode::from(1),
+    }
+}
+
+fn print_scene_error(e: &SceneError) {
+    let terminal = std::io::stderr().is_terminal();
+    let theme = if terminal {
+        miette::GraphicalTheme::unicode()
+    } else {
+        miette::GraphicalTheme::unicode_nocolor()
+    };
+    // Lines are wrapped for a person at a terminal only: piped into a log or a tool, a message
+    // stays on one line however long its paths are, so that grep finds it whole.
+    let handler = miette::GraphicalReportHandler::new_themed(theme).with_wrap_lines(terminal);
+    for d in &e.diagnostics {
+        let mut out = String::new();
+        if handler.render_report(&mut out, d).is_err() {
+            out = d.message().to_string();
+        }
+        eprint!("{out}");
+    }
+    let n = e.diagnostics.len();
+    eprintln!(
+        "error: {} has {n} problem{}",
+        e.file.display(),
+        if n == 1 { "" } else { "s" }
+    );
+}
+
+pub(crate) fn load(path: &Path, limits: &Limits) -> Result<snell::Scene, ExitCode> {
+    snell::scene::load_with(path, limits).map_err(|e| {
+        print_scene_error(&e);
+        ExitCode::from(2)
+    })
+}
+
+fn check(path: &Path, limits: &Limits) -> ExitCode {
+    let scene = match load(path, limits) {
+        Ok(s) => s,
+        Err(code) => return code,
+    };
+    outln!("{}", scene.summary());
+    for w in &scene.warnings {
+        outln!("warning: {w}");
+    }
+    outln!("ok: {} is a valid scene", path.display());
+    ExitCode::SUCCESS
+}
+
+/// Checks the image sides and samples per pixel after the command line's overrides.
+pub(crate) fn check_size_and_spp(s: &RenderSettings, limits: &Limits) -> Result<(), ExitCode> {
+    for (what, v) in [("--width", s.width), ("--height", s.height)] {
+        RenderSettings::check_side(what, v).map_err(|e| usage_error(&e, None))?;
+    }
+    limits
+        .check_spp(s.spp)
+        .map_err(|(e, help)| usage_error(&e, help.as_deref()))
+}
+
+pub(crate) fn usage_error(msg: &str, help: Option<&str>) -> ExitCode {
+    eprintln!("error: {msg}");
+    if let Some(h) = help {
+        eprintln!("  help: {h}");
+    }
+    ExitCode::from(2)
+}

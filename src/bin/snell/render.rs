@@ -1,0 +1,429 @@
+//! `snell render`: a scene to an image, with progress, interruption, checkpoints, debug
+//! views and statistics.
+
+use crate::args::RenderArgs;
+use crate::{check_size_and_spp, load, usage_error};
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use snell::checkpoint::Checkpoint;
+use snell::integrator::Whitted;
+use snell::integrator::aov::{Aov, render_aovs};
+use snell::output::{ExrLayer, OutputError, OutputFormat, PendingOutput, encode_exr_layers};
+use snell::render::{RenderOptions, TileStore};
+use std::io::IsTerminal;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+use std::sync::atomic::{AtomicBool, AtomicU32, Ordering};
+use std::time::Instant;
+
+/// Exit code of a render stopped by Ctrl-C or SIGTERM (after writing what was done).
+const EXIT_INTERRUPTED: u8 = 130;
+
+/// Set by the first Ctrl-C or SIGTERM: tiles not yet started are skipped.
+static STOP: AtomicBool = AtomicBool::new(false);
+/// Signals received.
+static SIGNALS: AtomicU32 = AtomicU32::new(0);
+
+/// First Ctrl-C (or SIGTERM): stop after the tiles under way and write what is done.
+/// Second: exit at once.
+fn handle_interrupts() {
+    let _ = ctrlc::set_handler(|| {
+        if SIGNALS.fetch_add(1, Ordering::SeqCst) > 0 {
+            // `exit` runs no destructors: the temporary files are removed here.
+            snell::output::atomic::remove_pending_files();
+            eprintln!("\ninterrupted again: stopping now, without writing the image");
+            std::process::exit(EXIT_INTERRUPTED as i32);
+        }
+        STOP.store(true, Ordering::SeqCst);
+        eprintln!(
+            "\ninterrupted: finishing the tiles under way, then writing what is done (Ctrl-C again stops at once)"
+        );
+    });
+}
+
+/// `out.png` with a view's name before the extension: `out.normal.png`.
+fn aov_path(out: &Path, aov: Aov) -> PathBuf {
+    let mut name = out.file_stem().unwrap_or_default().to_os_string();
+    name.push(format!(".{}.", aov.name()));
+    name.push(out.extension().unwrap_or_default());
+    out.with_file_name(name)
+}
+
+pub(crate) fn render(args: RenderArgs) -> ExitCode {
+    let resumed = match &args.resume {
+        None => None,
+        Some(path) => match Checkpoint::load(path) {
+            Ok(c) => Some(c),
+            Err(e) => return usage_error(&e, None),
+        },
+    };
+    let scene_path = match (&args.scene, &resumed) {
+        (Some(p), _) => p.clone(),
+        (None, Some(c)) => c.scene.clone(),
+        (None, None) => return usage_error("give a scene file", None),
+    };
+    let limits = match args.limits.get() {
+        Ok(l) => l,
+        Err(code) => return code,
+    };
+    let load_start = Instant::now();
+    let mut scene = match load(&scene_path, &limits) {
+        Ok(s) => s,
+        Err(code) => return code,
+    };
+    let load_time = load_start.elapsed();
+    let s = &mut scene.settings;
+    if let Some(c) = &resumed {
+        s.width = c.width;
+        s.height = c.height;
+        s.spp = c.spp;
+        s.seed = c.seed;
+    }
+    if let Some(w) = args.width {
+        s.width = w;
+    }
+    if let Some(h) = args.height {
+        s.height = h;
+    }
+    if let Some(n) = args.spp {
+        s.spp = n;
+    }
+    if let Some(seed) = args.seed {
+        s.seed = seed;
+    }
+    if let Err(code) = check_size_and_spp(s, &limits) {
+        return code;
+    }
+    if let Err((e, help)) = limits.check_pixels(s.width, s.height) {
+        return usage_error(&e, help.as_deref());
+    }
+    // Refuse a render the machine cannot hold before spending time on it.
+    let estimate = snell::scene::memory_estimate(&scene);
+    if let Some(available) = snell::scene::available_memory()
+        && let Err(e) = estimate.check(available)
+    {
+        return usage_error(&e, Some("render a smaller image (--width, --height)"));
+    }
+    let scene_bytes = std::fs::read(&scene_path).unwrap_or_default();
+    let fingerprint = snell::checkpoint::fingerprint(
+        &scene_bytes,
+        scene.settings.width,
+        scene.settings.height,
+        scene.settings.spp,
+        scene.settings.seed,
+    );
+    if let Some(c) = &resumed
+        && c.fingerprint != fingerprint
+    {
+        return usage_error(
+            "the scene file or the settings changed since the checkpoint was saved, so resuming would not give the same picture",
+            Some("render again without --resume, or restore the scene as it was"),
+        );
+    }
+    let out_path = args
+        .output
+        .clone()
+        .or_else(|| resumed.as_ref().map(|c| c.output.clone()))
+        .unwrap_or_else(|| {
+            // `cap.day.toml` gives `cap.day.png` (with_extension would cut it to `cap.png`).
+            let mut name = scene_path.file_stem().unwrap_or_default().to_os_string();
+            name.push(".png");
+            PathBuf::from(name)
+        });
+    let checkpoint_path = args.checkpoint.clone().or_else(|| args.resume.clone());
+    if !(args.checkpoint_every > 0.0 && args.checkpoint_every.is_finite()) {
+        return usage_error(
+            "--checkpoint-every must be a positive number of seconds",
+            None,
+        );
+    }
+    let mut pending = match PendingOutput::create(&out_path) {
+        Ok(p) => p,
+        Err(e @ OutputError::UnknownFormat(_)) => return usage_error(&e.to_string(), None),
+        Err(e) => {
+            eprintln!("error: {e}");
+            return ExitCode::from(1);
+        }
+    };
+    let mut aovs: Vec<Aov> = vec![];
+    for a in args.aov.iter().flatten() {
+        if !aovs.contains(a) {
+            aovs.push(*a);
+        }
+    }
+    // Separate PNGs are reserved now, like the picture, so a bad path fails before rendering.
+    let mut aov_outputs = vec![];
+    if pending.format() == OutputFormat::Png {
+        for &a in &aovs {
+            match PendingOutput::create(&aov_path(&out_path, a)) {
+                Ok(p) => aov_outputs.push((a, p)),
+                Err(e) => {
+                    eprintln!("error: {e}");
+                    return ExitCode::from(1);
+                }
+            }
+        }
+    }
+    if !args.quiet {
+        for w in &scene.warnings {
+            eprintln!("warning: {w}");
+        }
+    }
+    let (w, h, spp) = (
+        scene.settings.width,
+        scene.settings.height,
+        scene.settings.spp,
+    );
+    let pixels = w as u64 * h as u64;
+    let bar = if !args.quiet && std::io::stderr().is_terminal() {
+        let bar = ProgressBar::with_draw_target(Some(pixels), ProgressDrawTarget::stderr());
+        bar.set_style(
+            ProgressStyle::with_template(
+                "{spinner} rendering [{elapsed_precise}] {wide_bar} {percent:>3}%  ETA {eta}",
+            )
+            .expect("the template is valid"),
+        );
+        bar
+    } else {
+        ProgressBar::hidden()
+    };
+    let start = Instant::now();
+    let threads = args.threads.map(usize::from);
+    handle_interrupts();
+    let store = TileStore::new(resumed.map(|c| c.tiles).unwrap_or_default());
+    let snapshot = |tiles| Checkpoint {
+        fingerprint,
+        width: scene.settings.width,
+        height: scene.settings.height,
+        spp: scene.settings.spp,
+        seed: scene.settings.seed,
+        scene: std::fs::canonicalize(&scene_path).unwrap_or_else(|_| scene_path.clone()),
+        output: std::path::absolute(&out_path).unwrap_or_else(|_| out_path.clone()),
+        tiles,
+    };
+    let finished = AtomicBool::new(false);
+    let rendered = std::thread::scope(|scope| {
+        // Checkpoints are written from their own thread, every few seconds.
+        if let Some(path) = &checkpoint_path {
+            let (store, finished, snapshot) = (&store, &finished, &snapshot);
+            let every = std::time::Duration::from_secs_f64(args.checkpoint_every);
+            scope.spawn(move || {
+                let mut last = Instant::now();
+                while !finished.load(Ordering::SeqCst) {
+                    std::thread::sleep(std::time::Duration::from_millis(50));
+                    if last.elapsed() >= every {
+                        if let Err(e) = snapshot(store.snapshot()).save(path) {
+                            eprintln!(
+                                "warning: cannot save the checkpoint {}: {e}",
+                                path.display()
+                            );
+                        }
+                        last = Instant::now();
+                    }
+                }
+            });
+        }
+        let options = RenderOptions {
+            threads,
+            progress: &|n| bar.set_position(n),
+            cancel: Some(&STOP),
+            store: Some(&store),
+        };
+        let r = snell::render::render_with(&scene, &Whitted, &options);
+        finished.store(true, Ordering::SeqCst);
+        r
+    });
+    let rendered = match rendered {
+        Ok(r) => r,
+        Err(e) => {
+            bar.abandon();
+            eprintln!("error: {e}");
+            return ExitCode::from(1);
+        }
+    };
+    bar.finish_and_clear();
+    let elapsed = start.elapsed().as_secs_f64();
+    if !rendered.complete() {
+        // An unfinished picture never replaces a finished one: it goes beside it.
+        pending.make_partial();
+        for (_, out) in &mut aov_outputs {
+            out.make_partial();
+        }
+    }
+    let written = if aovs.is_empty() {
+        pending.commit(&rendered.image).map_err(|e| e.to_string())
+    } else {
+        write_aovs(
+            &scene,
+            threads,
+            &rendered.image,
+            pending,
+            &aovs,
+            aov_outputs,
+        )
+    };
+    if let Err(e) = written {
+        eprintln!("error: {e}");
+        return ExitCode::from(1);
+    }
+    if !rendered.complete() {
+        let resume = match &checkpoint_path {
+            Some(path) => match snapshot(store.snapshot()).save(path) {
+                Ok(()) => format!("; continue with: snell render --resume {}", path.display()),
+                Err(e) => format!("; the checkpoint could not be saved: {e}"),
+            },
+            None => String::new(),
+        };
+        let old = if out_path.exists() {
+            "was left as it was"
+        } else {
+            "was not written"
+        };
+        eprintln!(
+            "interrupted: wrote {} with {} of {} tiles rendered (the rest are black); {} {old}{resume}",
+            snell::output::partial_path(&out_path).display(),
+            rendered.tiles_done,
+            rendered.tiles_total,
+            out_path.display(),
+        );
+        return ExitCode::from(EXIT_INTERRUPTED);
+    }
+    // The picture is whole: an interrupted run's partial pictures of it are out of date.
+    let _ = std::fs::remove_file(snell::output::partial_path(&out_path));
+    for &a in &aovs {
+        let _ = std::fs::remove_file(snell::output::partial_path(&aov_path(&out_path, a)));
+    }
+    if let Some(path) = &checkpoint_path {
+        // The render is whole: its checkpoint has nothing left to continue.
+        let _ = std::fs::remove_file(path);
+    }
+    if !args.quiet {
+        let samples = pixels * spp as u64;
+        // A resumed render's rate counts only the samples rendered in this run.
+        let this_run = rendered.pixels_rendered * spp as u64;
+        let resumed_part = if this_run < samples {
+            format!(" ({this_run} of them in this run)")
+        } else {
+            String::new()
+        };
+        outln!(
+            "wrote {}: {w} x {h}, {spp} spp, {samples} samples{resumed_part} in {elapsed:.2} s ({:.2} M samples/s, {} threads)",
+            out_path.display(),
+            this_run as f64 / elapsed.max(1e-9) / 1e6,
+            threads.unwrap_or_else(rayon::current_num_threads),
+        );
+    }
+    let bad = &rendered.bad_samples;
+    if bad.count > 0 && !args.quiet {
+        let places: Vec<String> = bad
+            .examples
+            .iter()
+            .take(3)
+            .map(|b| {
+                let what = match b.object {
+                    Some(i) => format!("object `{}`", scene.objects[i].name),
+                    None => "the background".to_string(),
+                };
+                let kind = if b.nan { "NaN" } else { "infinite" };
+                format!("pixel ({}, {}) on {what} ({kind})", b.x, b.y)
+            })
+            .collect();
+        eprintln!(
+            "warning: {} samples came out NaN or infinite and were left out of their pixels; {}: {}",
+            bad.count,
+            if bad.count as usize > places.len() {
+                "the first"
+            } else {
+                "at"
+            },
+            places.join("; ")
+        );
+        eprintln!(
+            "  help: look for huge or extreme values in those objects' materials and lights, and run `snell explain SCENE --pixel X,Y` on one of them"
+        );
+    }
+    if args.stats {
+        print_stats(&scene.stats, load_time, &rendered.rays, elapsed);
+    }
+    ExitCode::SUCCESS
+}
+
+/// Writes the picture and its debug views: one multi-layer EXR, or a PNG per view.
+fn write_aovs(
+    scene: &snell::Scene,
+    threads: Option<usize>,
+    image: &snell::film::Image,
+    pending: PendingOutput,
+    aovs: &[Aov],
+    pngs: Vec<(Aov, PendingOutput)>,
+) -> Result<(), String> {
+    let buffers = render_aovs(scene, threads).map_err(|e| e.to_string())?;
+    if pending.format() == OutputFormat::Exr {
+        let layers: Vec<ExrLayer> = aovs
+            .iter()
+            .map(|&a| (a.name(), buffers.channels(a)))
+            .collect();
+        let bytes = encode_exr_layers(image, &layers, pending.path()).map_err(|e| e.to_string())?;
+        return pending.commit_bytes(&bytes).map_err(|e| e.to_string());
+    }
+    pending.commit(image).map_err(|e| e.to_string())?;
+    for (a, out) in pngs {
+        out.commit(&buffers.display(a, scene.settings.max_depth))
+            .map_err(|e| e.to_string())?;
+    }
+    Ok(())
+}
+
+/// The `--stats` report.
+fn print_stats(
+    s: &snell::scene::BuildStats,
+    load_time: std::time::Duration,
+    rays: &snell::integrator::RayStats,
+    render_secs: f64,
+) {
+    let ms = |d: std::time::Duration| d.as_secs_f64() * 1e3;
+    let mib = |b: usize| b as f64 / (1u64 << 20) as f64;
+    outln!(
+        "scene:     {} objects; {} mesh(es), {} triangles ({} placed); loaded and built in {:.1} ms",
+        s.objects,
+        s.meshes,
+        s.unique_triangles,
+        s.instanced_triangles,
+        ms(load_time)
+    );
+    outln!(
+        "build:     mesh files read in {:.1} ms, mesh BVHs built in {:.1} ms, object BVH in {:.2} ms",
+        ms(s.mesh_load_time),
+        ms(s.mesh_bvh_time),
+        ms(s.object_bvh_time)
+    );
+    let per_triangle = if s.unique_triangles > 0 {
+        format!(
+            " ({:.1} bytes per triangle)",
+            s.bvh_bytes as f64 / s.unique_triangles as f64
+        )
+    } else {
+        String::new()
+    };
+    outln!(
+        "memory:    BVHs {:.2} MiB{per_triangle}, mesh data {:.2} MiB",
+        mib(s.bvh_bytes),
+        mib(s.mesh_bytes)
+    );
+    let rate = |n: u64| n as f64 / render_secs.max(1e-9) / 1e6;
+    outln!(
+        "rays:      {:.2} M in {render_secs:.2} s: {:.2} M rays/s",
+        rays.total() as f64 / 1e6,
+        rate(rays.total())
+    );
+    for (kind, n) in [
+        ("camera", rays.camera),
+        ("secondary", rays.secondary),
+        ("shadow", rays.shadow),
+    ] {
+        outln!(
+            "  {kind:<10} {:>8.2} M  {:>7.2} M/s of render time",
+            n as f64 / 1e6,
+            rate(n)
+        );
+    }
+}
