@@ -28,6 +28,9 @@ pub struct MeshData {
     pub materials: Vec<MtlMaterial>,
     /// Problems that did not stop the load, summarised (one entry per kind, not per line).
     pub warnings: Vec<String>,
+    /// MTL files that `mtllib` names but that could not be read, each with why (`x.mtl`
+    /// not found), so a scene can say why the mesh has no materials.
+    pub unread_mtl: Vec<String>,
 }
 
 /// A material from an MTL file (only what was given is `Some`).
@@ -84,6 +87,7 @@ impl MeshData {
             triangle_materials,
             materials,
             warnings: _,
+            unread_mtl: _,
         } = self;
         if materials.len() > u16::MAX as usize {
             return Err(MeshInputError::TooManyMaterials(materials.len()));

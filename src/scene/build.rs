@@ -355,8 +355,16 @@ impl Builder<'_> {
     }
 
     fn finite(&mut self, x: f32, path: &DocPath) -> f32 {
-        if !x.is_finite() {
-            self.error(path.clone(), format!("must be a finite number, not {x}"));
+        if x.is_nan() {
+            self.error(path.clone(), "must be a finite number, not nan");
+            0.0
+        } else if x.is_infinite() {
+            // `inf`, or a number too large for a 32-bit float (1e300): the same limit holds.
+            self.error_help(
+                path.clone(),
+                format!("is too large: numbers must be at most {MAX_MAGNITUDE:e} in magnitude"),
+                "squares of larger numbers overflow 32-bit floats; scale the scene down",
+            );
             0.0
         } else if x.abs() > MAX_MAGNITUDE {
             self.error_help(
@@ -404,13 +412,22 @@ impl Builder<'_> {
     }
 
     fn point(&mut self, v: V3, path: &DocPath) -> Vec3A {
-        if !v.iter().all(|x| x.is_finite()) {
+        if v.iter().any(|x| x.is_nan()) {
             self.error(path.clone(), format!("must be finite numbers, not {v:?}"));
             Vec3A::ZERO
-        } else if v.iter().any(|x| x.abs() > MAX_MAGNITUDE) {
+        } else if v.iter().any(|x| x.is_infinite() || x.abs() > MAX_MAGNITUDE) {
             self.error_help(
                 path.clone(),
-                format!("{v:?} is too large (each number at most {MAX_MAGNITUDE:e} in magnitude)"),
+                if v.iter().any(|x| x.is_infinite()) {
+                    // `inf`, or beyond a 32-bit float (1e300): naming the value would say `inf`.
+                    format!(
+                        "is too large: each number must be at most {MAX_MAGNITUDE:e} in magnitude"
+                    )
+                } else {
+                    format!(
+                        "{v:?} is too large (each number at most {MAX_MAGNITUDE:e} in magnitude)"
+                    )
+                },
                 "squares of larger numbers overflow 32-bit floats; scale the scene down",
             );
             Vec3A::ZERO
@@ -991,6 +1008,17 @@ impl Builder<'_> {
             (None, Some(m)) if !m.slot_materials.is_empty() => {
                 slot_materials = m.slot_materials.clone();
                 Some(slot_materials[0])
+            }
+            (None, Some(m)) if !m.unread_mtl.is_empty() => {
+                self.error_help(
+                    path.clone(),
+                    format!(
+                        "the mesh file's materials could not be read (MTL file {}), so the object needs a `material`",
+                        m.unread_mtl.join(", MTL file ")
+                    ),
+                    "put the MTL file where the OBJ file's `mtllib` says (relative to the OBJ file), or add material = \"NAME\"",
+                );
+                None
             }
             (None, Some(_)) => {
                 self.error_help(

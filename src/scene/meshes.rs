@@ -21,6 +21,8 @@ pub(super) struct LoadedMesh {
     pub mesh: Arc<Mesh>,
     /// Scene material of each of the file's materials (empty when it has none).
     pub slot_materials: Vec<usize>,
+    /// The MTL files the mesh file names that could not be read, each with why.
+    pub unread_mtl: Vec<String>,
 }
 
 /// Loaded meshes by (file, normals option); `None` where loading failed (reported once).
@@ -159,6 +161,7 @@ impl Builder<'_> {
             self.warnings.push(format!("{file}: {w}"));
         }
         let loader_notes = data.warnings.join("; ");
+        let unread_mtl = data.unread_mtl.clone();
         let (input, materials) = match data.into_mesh_input(smooth) {
             Ok(converted) => converted,
             Err(MeshInputError::TooManyMaterials(n)) => {
@@ -222,6 +225,7 @@ impl Builder<'_> {
         Some(LoadedMesh {
             mesh: Arc::new(mesh),
             slot_materials,
+            unread_mtl,
         })
     }
 
