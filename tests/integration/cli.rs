@@ -65,7 +65,28 @@ fn bad_command_lines_exit_2() {
     expect(&["render"], &dir, 2);
     expect(&["render", &scene, "--bogus"], &dir, 2);
     expect(&["render", &scene, "--threads", "0"], &dir, 2);
-    expect(&["render", &scene, "--width", "-3"], &dir, 2);
+    // A negative number is told what the flag takes, not clap's tip to write `-- -3`.
+    for flag in ["--width", "--height", "--spp", "--threads", "--max-pixels"] {
+        let o = expect(&["render", &scene, flag, "-3"], &dir, 2);
+        assert!(
+            stderr(&o).contains("`-3` is not a positive whole number")
+                && !stderr(&o).contains("-- -3"),
+            "{flag}: {}",
+            stderr(&o)
+        );
+    }
+    let o = expect(&["render", &scene, "--seed", "-1"], &dir, 2);
+    assert!(
+        stderr(&o).contains("`-1` is not a whole number from 0"),
+        "{}",
+        stderr(&o)
+    );
+    let o = expect(&["render", &scene, "--checkpoint-every", "-1"], &dir, 2);
+    assert!(
+        stderr(&o).contains("--checkpoint-every must be a positive number"),
+        "{}",
+        stderr(&o)
+    );
     let o = expect(&["render", &scene, "--spp", "10"], &dir, 2);
     assert!(
         stderr(&o).contains("square number") && stderr(&o).contains("use 9 (3 x 3) or 16 (4 x 4)"),

@@ -168,10 +168,45 @@ fn the_command_prints_the_tree_and_its_json_parses() {
             "1,1",
             "--sample",
             "1",
+            "--spp",
+            "1",
         ],
     ] {
         let o = run(bad);
         assert_eq!(o.status.code(), Some(2), "{bad:?}");
         assert!(!String::from_utf8_lossy(&o.stderr).contains("panicked"));
     }
+}
+
+#[test]
+fn a_sample_past_the_last_is_told_the_range_in_words() {
+    let err = |spp: &str, k: &str| {
+        let o = Command::new(env!("CARGO_BIN_EXE_snell"))
+            .current_dir(repo(""))
+            .args([
+                "explain",
+                "scenes/seed.toml",
+                "--pixel",
+                "10,10",
+                "--spp",
+                spp,
+                "--sample",
+                k,
+            ])
+            .output()
+            .unwrap();
+        assert_eq!(o.status.code(), Some(2));
+        String::from_utf8_lossy(&o.stderr).into_owned()
+    };
+    let one = err("1", "3");
+    assert!(
+        one.contains("sample 3 does not exist: the pixel has 1 sample\n")
+            && one.contains("use --sample 0 (its only one), or more samples with --spp"),
+        "{one}"
+    );
+    let four = err("4", "4");
+    assert!(
+        four.contains("the pixel has 4 samples") && four.contains("use --sample 0 to 3,"),
+        "{four}"
+    );
 }

@@ -16,19 +16,19 @@ pub(crate) struct RenderArgs {
     #[arg(short, long, value_name = "OUT")]
     pub(crate) output: Option<PathBuf>,
     /// Image width in pixels (overrides the scene).
-    #[arg(long, value_name = "W")]
+    #[arg(long, allow_negative_numbers = true, value_parser = size, value_name = "W")]
     pub(crate) width: Option<u32>,
     /// Image height in pixels (overrides the scene).
-    #[arg(long, value_name = "H")]
+    #[arg(long, allow_negative_numbers = true, value_parser = size, value_name = "H")]
     pub(crate) height: Option<u32>,
     /// Samples per pixel, a square number: 1, 4, 9, 16 ... (n x n stratified, jittered).
-    #[arg(long, value_name = "N")]
+    #[arg(long, allow_negative_numbers = true, value_parser = size, value_name = "N")]
     pub(crate) spp: Option<u32>,
     /// Render threads [default: every core]. The image is the same at any count.
-    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u16).range(1..))]
+    #[arg(long, value_name = "N", allow_negative_numbers = true, value_parser = positive::<u16>)]
     pub(crate) threads: Option<u16>,
     /// Seed of the sample jitter; the same seed gives the same bytes.
-    #[arg(long, value_name = "S")]
+    #[arg(long, allow_negative_numbers = true, value_parser = whole::<u64>, value_name = "S")]
     pub(crate) seed: Option<u64>,
     /// Print nothing but errors.
     #[arg(short, long)]
@@ -51,7 +51,12 @@ pub(crate) struct RenderArgs {
     #[arg(long, value_name = "FILE")]
     pub(crate) resume: Option<PathBuf>,
     /// Seconds between checkpoints.
-    #[arg(long, value_name = "SECS", default_value_t = 30.0)]
+    #[arg(
+        long,
+        allow_negative_numbers = true,
+        value_name = "SECS",
+        default_value_t = 30.0
+    )]
     pub(crate) checkpoint_every: f64,
     #[command(flatten)]
     pub(crate) limits: LimitArgs,
@@ -76,22 +81,22 @@ pub(crate) struct ExplainArgs {
     pub(crate) pixel: (u32, u32),
     /// Which of the pixel's samples, from 0 (in the order the renderer takes them) [default:
     /// the ray through the pixel's centre].
-    #[arg(long, value_name = "K")]
+    #[arg(long, allow_negative_numbers = true, value_parser = whole::<u32>, value_name = "K")]
     pub(crate) sample: Option<u32>,
     /// Image width in pixels (overrides the scene; pixel coordinates depend on it).
-    #[arg(long, value_name = "W")]
+    #[arg(long, allow_negative_numbers = true, value_parser = size, value_name = "W")]
     pub(crate) width: Option<u32>,
     /// Image height in pixels (overrides the scene).
-    #[arg(long, value_name = "H")]
+    #[arg(long, allow_negative_numbers = true, value_parser = size, value_name = "H")]
     pub(crate) height: Option<u32>,
     /// Samples per pixel (overrides the scene; `--sample` counts up to it).
-    #[arg(long, value_name = "N")]
+    #[arg(long, allow_negative_numbers = true, value_parser = size, value_name = "N")]
     pub(crate) spp: Option<u32>,
     /// Print the tree as JSON, for tools.
     #[arg(long)]
     pub(crate) json: bool,
     /// Most rays shown; the rest of a bigger tree is counted, and the cut is said.
-    #[arg(long, value_name = "N", default_value_t = 200)]
+    #[arg(long, allow_negative_numbers = true, value_parser = positive::<usize>, value_name = "N", default_value_t = 200)]
     pub(crate) max_rays: usize,
     #[command(flatten)]
     pub(crate) limits: LimitArgs,
@@ -101,19 +106,19 @@ pub(crate) struct ExplainArgs {
 #[derive(Args, Debug)]
 pub(crate) struct LimitArgs {
     /// Most pixels in the image [default: 268435456, 16384 x 16384].
-    #[arg(long, value_name = "N")]
+    #[arg(long, allow_negative_numbers = true, value_parser = positive::<u64>, value_name = "N")]
     pub(crate) max_pixels: Option<u64>,
     /// Most samples per pixel [default: 65536].
-    #[arg(long, value_name = "N")]
+    #[arg(long, allow_negative_numbers = true, value_parser = positive::<u32>, value_name = "N")]
     pub(crate) max_spp: Option<u32>,
     /// Longest ray chain a scene may ask for with max_depth [default: 64; at most 256].
-    #[arg(long, value_name = "N")]
+    #[arg(long, allow_negative_numbers = true, value_parser = positive::<u32>, value_name = "N")]
     pub(crate) max_depth: Option<u32>,
     /// Most texels in one image texture [default: 268435456].
-    #[arg(long, value_name = "N")]
+    #[arg(long, allow_negative_numbers = true, value_parser = positive::<u64>, value_name = "N")]
     pub(crate) max_texture_pixels: Option<u64>,
     /// Most triangles in all the scene's meshes [default: 268435456].
-    #[arg(long, value_name = "N")]
+    #[arg(long, allow_negative_numbers = true, value_parser = positive::<u64>, value_name = "N")]
     pub(crate) max_triangles: Option<u64>,
 }
 
@@ -143,4 +148,31 @@ fn parse_pixel(s: &str) -> Result<(u32, u32), String> {
             .map_err(|_| format!("`{v}` is not a pixel coordinate (a whole number from 0)"))
     };
     Ok((n(x)?, n(y)?))
+}
+
+/// An image side or a sample count: a whole number, told so when it is negative or not a
+/// number; 0 and numbers past the limits get their own message from the render's checks.
+fn size(s: &str) -> Result<u32, String> {
+    s.trim()
+        .parse()
+        .map_err(|_| format!("`{s}` is not a positive whole number (1, 2, 3 ...)"))
+}
+
+/// A whole number from 0, for `--seed` and `--sample`.
+fn whole<T: std::str::FromStr>(s: &str) -> Result<T, String> {
+    s.trim()
+        .parse()
+        .map_err(|_| format!("`{s}` is not a whole number from 0 (0, 1, 2 ...)"))
+}
+
+/// A whole number from 1, for sizes, counts and limits. Negative numbers reach this parser
+/// (`allow_negative_numbers`), so `--width -5` is told what a width is, not to write `-- -5`.
+fn positive<T: std::str::FromStr + PartialEq + Default>(s: &str) -> Result<T, String> {
+    match s.trim().parse::<T>() {
+        Ok(v) if v != T::default() => Ok(v),
+        Ok(_) => Err("must be at least 1".to_string()),
+        Err(_) => Err(format!(
+            "`{s}` is not a positive whole number (1, 2, 3 ...)"
+        )),
+    }
 }

@@ -39,9 +39,23 @@ pub(crate) fn explain(args: ExplainArgs) -> ExitCode {
     let film = match args.sample {
         None => (x as f32 + 0.5, y as f32 + 0.5),
         Some(k) if k >= s.spp => {
+            let (has, help) = if s.spp == 1 {
+                (
+                    "1 sample".to_string(),
+                    "use --sample 0 (its only one), or more samples with --spp".to_string(),
+                )
+            } else {
+                (
+                    format!("{} samples", s.spp),
+                    format!(
+                        "use --sample 0 to {}, or more samples with --spp",
+                        s.spp - 1
+                    ),
+                )
+            };
             return usage_error(
-                &format!("sample {k} does not exist: the pixel has {} samples", s.spp),
-                Some(&format!("use --sample 0 to {}, or --spp", s.spp - 1)),
+                &format!("sample {k} does not exist: the pixel has {has}"),
+                Some(&help),
             );
         }
         Some(k) => {
