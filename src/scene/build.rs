@@ -628,7 +628,17 @@ impl Builder<'_> {
         let start = std::time::Instant::now();
         let accel = Bvh::build(&objects);
         self.stats.object_bvh_time = start.elapsed();
-        self.stats.record_objects(&objects);
+        let cache = &self.mesh_cache;
+        let file_of = |m: &Arc<crate::geometry::Mesh>| {
+            cache
+                .values()
+                .flatten()
+                .find(|l| Arc::ptr_eq(&l.mesh, m))
+                .map_or_else(String::new, |l| l.file.clone())
+        };
+        let mut stats = std::mem::take(&mut self.stats);
+        stats.record_objects(&objects, file_of);
+        self.stats = stats;
         self.stats.bvh_bytes += accel.bytes();
         // An object with several materials (a mesh with an MTL file) counts as transparent,
         // or as reading uv, when any of them does.

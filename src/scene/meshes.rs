@@ -19,6 +19,8 @@ use std::time::Instant;
 #[derive(Clone, Debug)]
 pub(super) struct LoadedMesh {
     pub mesh: Arc<Mesh>,
+    /// The file as the scene first names it.
+    pub file: String,
     /// Scene material of each of the file's materials (empty when it has none).
     pub slot_materials: Vec<usize>,
     /// The MTL files the mesh file names that could not be read, each with why.
@@ -224,6 +226,7 @@ impl Builder<'_> {
         }
         Some(LoadedMesh {
             mesh: Arc::new(mesh),
+            file: file.to_string(),
             slot_materials,
             unread_mtl,
         })

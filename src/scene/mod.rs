@@ -300,22 +300,47 @@ pub struct BuildStats {
     pub bvh_bytes: usize,
     /// Bytes of the distinct meshes' triangles, normals and uvs.
     pub mesh_bytes: usize,
+    /// Each distinct mesh, in the order first placed.
+    pub per_mesh: Vec<MeshStats>,
+}
+
+/// One distinct mesh of a scene: its file, triangles and placements.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct MeshStats {
+    /// The file as the scene names it.
+    pub file: String,
+    /// Triangles loaded from the file (degenerate ones dropped).
+    pub triangles: usize,
+    /// Objects that place it.
+    pub placements: usize,
 }
 
 impl BuildStats {
     /// Counts objects, meshes and triangles.
-    pub(crate) fn record_objects(&mut self, objects: &[Object]) {
-        let mut seen = std::collections::HashSet::new();
+    /// `file_of` names the file a mesh was read from.
+    pub(crate) fn record_objects(
+        &mut self,
+        objects: &[Object],
+        file_of: impl Fn(&std::sync::Arc<crate::geometry::Mesh>) -> String,
+    ) {
+        let mut seen = std::collections::HashMap::new();
         self.objects = objects.len();
         for o in objects {
             if let Shape::Mesh(m) = &o.shape {
                 self.instanced_triangles += m.triangle_count();
-                if seen.insert(std::sync::Arc::as_ptr(m)) {
+                let i = *seen.entry(std::sync::Arc::as_ptr(m)).or_insert_with(|| {
                     self.meshes += 1;
                     self.unique_triangles += m.triangle_count();
                     self.bvh_bytes += m.bvh_bytes();
                     self.mesh_bytes += m.geometry_bytes();
-                }
+                    self.per_mesh.push(MeshStats {
+                        file: file_of(m),
+                        triangles: m.triangle_count(),
+                        placements: 0,
+                    });
+                    self.per_mesh.len() - 1
+                });
+                self.per_mesh[i].placements += 1;
             }
         }
     }
@@ -605,8 +630,26 @@ impl Scene {
         }
         let lights: Vec<String> = lights.iter().map(|(k, n)| format!("{n} {k}")).collect();
         let s = &self.settings;
+        let mut meshes = String::new();
+        let st = &self.stats;
+        if st.meshes > 0 {
+            meshes = format!(
+                "\nmeshes:    {} ({} triangles loaded, {} placed)",
+                st.meshes, st.unique_triangles, st.instanced_triangles
+            );
+            for m in &st.per_mesh {
+                meshes += &format!(
+                    "\n  {}: {} triangles, placed {} time{} ({} triangles)",
+                    m.file,
+                    m.triangles,
+                    m.placements,
+                    if m.placements == 1 { "" } else { "s" },
+                    m.triangles * m.placements
+                );
+            }
+        }
         format!(
-            "image:     {} x {}, {} spp, max depth {}, seed {}\nobjects:   {} ({})\nlights:    {} ({})\nmaterials: {}\ntextures:  {}{}",
+            "image:     {} x {}, {} spp, max depth {}, seed {}\nobjects:   {} ({})\nlights:    {} ({})\nmaterials: {}\ntextures:  {}{}{meshes}",
             s.width,
             s.height,
             s.spp,

@@ -310,6 +310,24 @@ fn unwritable_output_exits_1_and_keeps_the_old_image() {
 }
 
 #[test]
+fn check_counts_each_meshs_triangles_loaded_and_placed() {
+    let dir = scratch("check-meshes");
+    let field = repo("scenes/field.toml").to_string_lossy().into_owned();
+    let out = stdout(&expect(&["check", &field], &dir, 0));
+    assert!(
+        out.contains("meshes:    2 (75771 triangles loaded, 1212336 placed)")
+            && out.contains(
+                "stanford-bunny.obj: 69451 triangles, placed 16 times (1111216 triangles)"
+            )
+            && out.contains("teapot.obj: 6320 triangles, placed 16 times (101120 triangles)"),
+        "{out}"
+    );
+    // A scene without meshes says nothing of them.
+    let scene = write_scene(&dir, "s.toml", GOOD);
+    assert!(!stdout(&expect(&["check", &scene], &dir, 0)).contains("meshes:"));
+}
+
+#[test]
 fn check_prints_a_summary_and_warnings() {
     let dir = scratch("check");
     let inside = GOOD.replace("position = [0, 5, 0]", "position = [0, 0, -3]")
