@@ -1288,4 +1288,33 @@ mod tests {
         .to_string();
         assert!(e.contains("t.json:1:") && e.contains("JSON syntax"), "{e}");
     }
+
+    /// docs/scene-format.md names the keys where JSON's `null` means "not given" and those
+    /// (with a default) where it is refused; this holds the parser to that list.
+    #[test]
+    fn json_null_is_taken_for_keys_without_a_default_only() {
+        let scene = |camera: &str, object: &str| {
+            format!(
+                "{{\"$schema\": null, \"image\": {{\"width\": 8, \"height\": 6, \"filter\": {{\"type\": \"box\", \"radius\": null}}}}, \"camera\": {{\"look_at\": [0,0,-1]{camera}}}, \"fog\": null, \"materials\": {{\"m\": {{\"color\": null, \"texture\": null}}}}, \"objects\": [{{\"type\": \"sphere\", \"center\": [0,0,-3], \"radius\": 1, \"material\": \"m\", \"name\": null, \"transform\": null{object}}}]}}"
+            )
+        };
+        let load = |text: &str| load_str(text, Path::new("t.json"), Path::new("."), Format::Json);
+        assert!(load(&scene("", "")).is_ok());
+        let fog = scene("", "").replace(
+            "\"fog\": null",
+            "\"fog\": {\"mode\": \"exponential\", \"end\": null, \"density\": 0.1}",
+        );
+        assert!(load(&fog).is_ok(), "{:?}", load(&fog).err());
+        for (camera, object, key) in [
+            (", \"up\": null", "", "camera.up"),
+            (", \"fov\": null", "", "camera.fov"),
+            (", \"position\": null", "", "camera.position"),
+        ] {
+            let e = load(&scene(camera, object)).unwrap_err().to_string();
+            assert!(
+                e.contains(&format!("{key}: invalid type: null")),
+                "{key}: {e}"
+            );
+        }
+    }
 }

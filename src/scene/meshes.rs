@@ -274,12 +274,17 @@ impl Builder<'_> {
         });
         let highlight = !matches!(illum, 0 | 1);
         let ks = m.ks.map_or(Color::ZERO, rgb);
+        let (shininess, highlight_weight) = mtl_highlight(m.ns);
         Material {
             texture: textures.len() - 1,
             ambient: 1.0,
             diffuse: if illum == 0 { 0.0 } else { 1.0 },
-            specular: if highlight { ks } else { Color::ZERO },
-            shininess: m.ns.unwrap_or(10.0).clamp(0.0, 10_000.0),
+            specular: if highlight {
+                ks * highlight_weight
+            } else {
+                Color::ZERO
+            },
+            shininess,
             reflectivity: if matches!(illum, 3 | 5) {
                 ks.max_element().clamp(0.0, 1.0)
             } else {
@@ -289,5 +294,42 @@ impl Builder<'_> {
             ior: m.ni.filter(|n| *n > 0.0 && n.is_finite()).unwrap_or(1.5),
             absorption: Color::ZERO,
         }
+    }
+}
+
+/// The roughness an MTL file's specular exponent `Ns` stands for, as Blender's OBJ importer
+/// reads it: `1 - sqrt(Ns / 1000)`, so `Ns 0` (which 3ds Max writes beside `Ks 0.9`) is fully
+/// rough and `Ns 1000` a mirror-like polish. A file without `Ns` gets roughness 0.5,
+/// Blender's default (`Ns 250`).
+pub(super) fn mtl_roughness(ns: Option<f32>) -> f32 {
+    let ns = ns.filter(|n| n.is_finite()).unwrap_or(250.0);
+    1.0 - (ns.clamp(0.0, 1000.0) / 1000.0).sqrt()
+}
+
+/// The Phong highlight of an MTL material: the exponent `Ns` (at least 1), and the weight of
+/// `Ks`, `1 - roughness`, so that a rough surface shows no highlight instead of the constant
+/// sheen an exponent of 0 gives over the whole lit side.
+fn mtl_highlight(ns: Option<f32>) -> (f32, f32) {
+    let exponent = ns.filter(|n| n.is_finite()).unwrap_or(250.0);
+    (exponent.clamp(1.0, 10_000.0), 1.0 - mtl_roughness(ns))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn mtl_shininess_maps_to_roughness_as_blender_reads_it() {
+        assert_eq!(mtl_roughness(Some(0.0)), 1.0);
+        assert_eq!(mtl_roughness(Some(1000.0)), 0.0);
+        assert_eq!(mtl_roughness(Some(5000.0)), 0.0);
+        assert!((mtl_roughness(Some(250.0)) - 0.5).abs() < 1e-6);
+        assert!((mtl_roughness(None) - 0.5).abs() < 1e-6);
+        assert_eq!(mtl_roughness(Some(-3.0)), 1.0);
+        // 3ds Max's `Ks 0.9` with `Ns 0`: no highlight at all.
+        assert_eq!(mtl_highlight(Some(0.0)), (1.0, 0.0));
+        let (n, w) = mtl_highlight(Some(96.0));
+        assert_eq!(n, 96.0);
+        assert!((w - (0.096f32).sqrt()).abs() < 1e-6);
     }
 }

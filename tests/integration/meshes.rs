@@ -168,3 +168,39 @@ fn obj_and_ply_give_the_same_picture() {
     );
     assert!(render(&obj) == render(&ply));
 }
+
+/// 3ds Max (and the pymeshlab bunny's MTL) write `Ks 0.9` with `Ns 0`. Read as a Phong
+/// exponent of 0, that is a highlight of 0.9 over the whole lit side; read as Blender's
+/// importer reads it, `Ns 0` is fully rough and shows no highlight.
+#[test]
+fn mtl_ns_0_is_fully_rough_not_a_sheen_over_everything() {
+    let dir = scratch("mesh-ns");
+    let picture = |material: &str| {
+        std::fs::write(
+            dir.join("q.mtl"),
+            format!("newmtl m\nKd 0.5 0.5 0.5\n{material}"),
+        )
+        .unwrap();
+        std::fs::write(
+            dir.join("q.obj"),
+            "mtllib q.mtl\nv -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nusemtl m\nf 1 2 3 4\n",
+        )
+        .unwrap();
+        let text = "[image]\nwidth = 16\nheight = 16\n\
+            [camera]\nposition = [0, 0, 3]\nlook_at = [0, 0, 0]\nfov = 30\n\
+            [[lights]]\ntype = \"directional\"\ndirection = [0, 0, -1]\n\
+            [[objects]]\ntype = \"mesh\"\nfile = \"q.obj\"\n";
+        render(&load_str(text, &dir.join("t.toml"), &dir, Format::Toml).unwrap())
+    };
+    let matte = picture("Ks 0 0 0\nillum 2\n");
+    assert!(matte == picture("Ks 0.9 0.9 0.9\nNs 0\nillum 2\n"));
+    // A polished one (Ns 1000) does show its highlight where the light mirrors into the eye.
+    let shiny = picture("Ks 0.9 0.9 0.9\nNs 1000\nillum 2\n");
+    let centre = (8 * 16 + 8) as usize;
+    assert!(
+        shiny.pixels[centre].x > matte.pixels[centre].x + 0.5,
+        "{} against {}",
+        shiny.pixels[centre],
+        matte.pixels[centre]
+    );
+}
