@@ -691,6 +691,7 @@ mod tests {
                     material: 0,
                     slot_materials: vec![],
                     center,
+                    uv_scale: crate::math::Vec2::ONE,
                 }
             })
             .collect()

@@ -1081,8 +1081,25 @@ impl Builder<'_> {
             Some(t) => t.bounds_to_world(&b),
             None => b,
         });
+        let uv_scale = match d.uv_scale() {
+            None => crate::math::Vec2::ONE,
+            Some(s) => {
+                let at = path.key("uv_scale");
+                let u = self.finite(s.0[0], &at);
+                let v = self.finite(s.0[1], &at);
+                if u == 0.0 || v == 0.0 {
+                    self.error_help(
+                        at,
+                        "a uv scale of 0 shows one texel over the whole object",
+                        "use a non-zero factor (negative ones mirror)",
+                    );
+                }
+                crate::math::Vec2::new(u, v)
+            }
+        };
         Some(Object {
             name,
+            uv_scale,
             center: local_bounds.map_or(Vec3A::ZERO, |b| b.center()),
             shape,
             transform,

@@ -364,6 +364,8 @@ pub struct Object {
     pub world_bounds: Option<Aabb>,
     /// Centre of the object-space bounds (the default centre of spherical mappings).
     pub center: Vec3A,
+    /// Factors on the shape's own uv (`uv_scale` in the file; 1 by default).
+    pub uv_scale: crate::math::Vec2,
 }
 
 impl Object {
@@ -567,7 +569,7 @@ impl Scene {
             material: o.material_at(&h),
             tex: TexturePoint {
                 point: s.point,
-                uv: s.uv,
+                uv: s.uv * o.uv_scale,
                 center: o.center,
             },
         }

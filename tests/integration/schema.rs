@@ -406,6 +406,7 @@ normal = [0, 1, 0]
 [[objects]]
 type = "rectangle"
 material = "all"
+uv_scale = [1, 2]
 corner = [0, 0, 0]
 edge_u = [1, 0, 0]
 edge_v = [0, 1, 0]
@@ -434,6 +435,7 @@ capped = true
 [[objects]]
 type = "disk"
 material = "all"
+uv_scale = 4
 center = [0, 0, 0]
 normal = [0, 0, 1]
 radius = 1

@@ -464,3 +464,40 @@ fn dim_lights_still_light_and_cast_shadows() {
     );
     assert_eq!(shadowed, Color::ZERO);
 }
+
+/// Colour changes along the middle row of a picture of a 4 x 2 checkered rectangle seen
+/// head-on (filling the frame), with the given `uv_scale` line.
+fn checker_changes_across_a_rectangle(uv_scale: &str) -> usize {
+    let text = format!(
+        "[image]\nwidth = 64\nheight = 32\n\
+         [camera]\nposition = [0, 0, 10]\nlook_at = [0, 0, 0]\nfov = 11.4\n\
+         [world]\nambient = 1\n\
+         [textures.tiles]\ntype = \"checker\"\neven = 1\nodd = 0\nsize = 1\n\
+         [materials.m]\ntexture = \"tiles\"\ndiffuse = 0\n\
+         [[objects]]\ntype = \"rectangle\"\ncorner = [-2.2, -1.1, 0]\nedge_u = [4.4, 0, 0]\nedge_v = [0, 2.2, 0]\nmaterial = \"m\"\n{uv_scale}\n"
+    );
+    let scene = load_str(&text, Path::new("t.toml"), Path::new("."), Format::Toml).unwrap();
+    let img = snell::render::render(&scene, &Whitted, Some(1), &|_| {})
+        .unwrap()
+        .image;
+    let row: Vec<bool> = (0..64).map(|x| img.pixels[16 * 64 + x].x > 0.5).collect();
+    row.windows(2).filter(|w| w[0] != w[1]).count()
+}
+
+/// A rectangle's uv runs 0..1 across it, so a checker of size 1 is one cell over it all;
+/// `uv_scale = [4.4, 2.2]` makes its uv run in scene units, as a plane's: 1 x 1 squares, so
+/// the middle row, u from 0 to 4.4, crosses the cells' edges at 1, 2, 3 and 4.
+#[test]
+fn uv_scale_makes_a_rectangles_uv_run_in_scene_units() {
+    assert_eq!(checker_changes_across_a_rectangle(""), 0);
+    assert_eq!(
+        checker_changes_across_a_rectangle("uv_scale = [4.4, 2.2]"),
+        4
+    );
+    assert_eq!(checker_changes_across_a_rectangle("uv_scale = 2"), 1);
+    let bad = "[camera]\nlook_at = [0, 0, -1]\n[materials.m]\ncolor = 1\n[[objects]]\ntype = \"disk\"\nradius = 1\nmaterial = \"m\"\nuv_scale = [1, 0]\n";
+    let e = load_str(bad, Path::new("t.toml"), Path::new("."), Format::Toml)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("objects[0].uv_scale: a uv scale of 0"), "{e}");
+}

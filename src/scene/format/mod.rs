@@ -4,12 +4,13 @@
 //! become its descriptions, serde defaults its defaults (shown where the default's type is
 //! `Serialize`, which is why a few of these derive it).
 
-use schemars::{JsonSchema, Schema, SchemaGenerator, json_schema};
-use serde::de::{self, Deserializer, SeqAccess, Visitor};
+mod values;
+
+pub use values::{ColorDef, ScaleDef, UvScaleDef};
+
+use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
-use std::borrow::Cow;
 use std::collections::BTreeMap;
-use std::fmt;
 
 /// A point or vector `[x, y, z]` in scene units.
 pub type V3 = [f32; 3];
@@ -411,6 +412,9 @@ macro_rules! object_defs {
                 pub material: Option<String>,
                 /// Placement.
                 pub transform: Option<TransformDef>,
+                /// Factors on the shape's own uv, `[u, v]` or one number (default 1): a
+                /// rectangle's `[width, height]` makes its uv run in scene units, as a plane's.
+                pub uv_scale: Option<UvScaleDef>,
                 $( $(#[$fdoc])* $(#[serde(default = $default)])? pub $field: $ty, )*
             }
         )*
@@ -420,6 +424,13 @@ macro_rules! object_defs {
             pub fn common(&self) -> (&Option<String>, &Option<String>, &Option<TransformDef>) {
                 match self {
                     $( ObjectDef::$variant(o) => (&o.name, &o.material, &o.transform), )*
+                }
+            }
+
+            /// The object's `uv_scale`.
+            pub fn uv_scale(&self) -> Option<UvScaleDef> {
+                match self {
+                    $( ObjectDef::$variant(o) => o.uv_scale, )*
                 }
             }
         }
@@ -510,81 +521,6 @@ object_defs! {
     }
 }
 
-/// A colour: `[r, g, b]` in linear RGB, or one number for grey.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
-pub struct ColorDef(pub [f32; 3]);
-
-impl<'de> Deserialize<'de> for ColorDef {
-    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
-        struct V;
-        impl<'de> Visitor<'de> for V {
-            type Value = ColorDef;
-            fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
-                f.write_str("a colour: [r, g, b] or one number for grey")
-            }
-            fn visit_f64<E: de::Error>(self, v: f64) -> Result<ColorDef, E> {
-                Ok(ColorDef([v as f32; 3]))
-            }
-            fn visit_i64<E: de::Error>(self, v: i64) -> Result<ColorDef, E> {
-                Ok(ColorDef([v as f32; 3]))
-            }
-            fn visit_u64<E: de::Error>(self, v: u64) -> Result<ColorDef, E> {
-                Ok(ColorDef([v as f32; 3]))
-            }
-            fn visit_seq<A: SeqAccess<'de>>(self, seq: A) -> Result<ColorDef, A::Error> {
-                three(seq, &self).map(ColorDef)
-            }
-        }
-        d.deserialize_any(V)
-    }
-}
-
-/// A scale: one number for all axes or `[x, y, z]`.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
-pub struct ScaleDef(pub [f32; 3]);
-
-impl<'de> Deserialize<'de> for ScaleDef {
-    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
-        ColorDef::deserialize(d)
-            .map(|c| ScaleDef(c.0))
-            .map_err(|e| {
-                de::Error::custom(e.to_string().replace(
-                    "a colour: [r, g, b] or one number for grey",
-                    "a scale: one number or [x, y, z]",
-                ))
-            })
-    }
-}
-
-/// The schema of [`ColorDef`] and [`ScaleDef`]: one number, or an array of exactly three.
-fn number_or_three(description: &str) -> Schema {
-    json_schema!({
-        "description": description,
-        "type": ["number", "array"],
-        "items": { "type": "number" },
-        "minItems": 3,
-        "maxItems": 3,
-    })
-}
-
-impl JsonSchema for ColorDef {
-    fn schema_name() -> Cow<'static, str> {
-        "Color".into()
-    }
-    fn json_schema(_: &mut SchemaGenerator) -> Schema {
-        number_or_three("A colour: [r, g, b] in linear RGB, or one number for grey.")
-    }
-}
-
-impl JsonSchema for ScaleDef {
-    fn schema_name() -> Cow<'static, str> {
-        "Scale".into()
-    }
-    fn json_schema(_: &mut SchemaGenerator) -> Schema {
-        number_or_three("A scale: one number for all axes, or [x, y, z].")
-    }
-}
-
 /// The JSON Schema of a scene file, generated from these types: what `snell schema` prints,
 /// for editors to complete keys and flag mistakes as one types. Draft 7, which editors (VS
 /// Code's JSON support, taplo) understand fully.
@@ -601,19 +537,6 @@ pub fn schema() -> serde_json::Value {
         .into(),
     );
     schema.to_value()
-}
-
-fn three<'de, A: SeqAccess<'de>>(mut seq: A, exp: &dyn de::Expected) -> Result<[f32; 3], A::Error> {
-    let mut out = [0.0; 3];
-    for (i, slot) in out.iter_mut().enumerate() {
-        *slot = seq
-            .next_element::<f32>()?
-            .ok_or_else(|| de::Error::invalid_length(i, exp))?;
-    }
-    if seq.next_element::<de::IgnoredAny>()?.is_some() {
-        return Err(de::Error::invalid_length(4, exp));
-    }
-    Ok(out)
 }
 
 fn origin() -> V3 {
