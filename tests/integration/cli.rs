@@ -388,3 +388,47 @@ fn piped_messages_stay_on_one_line_however_long_the_path() {
         "{err}"
     );
 }
+
+/// A render that will plainly take very long says so, with an estimate, before it starts.
+/// (The process is killed once it has said it: the render itself would take weeks.)
+#[test]
+fn a_render_of_days_is_told_so_before_it_starts() {
+    use std::io::BufRead;
+    let dir = scratch("long-render");
+    let seed = repo("scenes/seed.toml");
+    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_snell"))
+        .args(["render", seed.to_str().unwrap(), "-o", "huge.png"])
+        .args(["--width", "16384", "--height", "16384", "--spp", "65536"])
+        .current_dir(&dir)
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut said = String::new();
+    let mut lines = std::io::BufReader::new(child.stderr.take().unwrap()).lines();
+    for line in lines.by_ref().take(2) {
+        said += &line.unwrap();
+        said.push('\n');
+    }
+    let _ = child.kill();
+    let _ = child.wait();
+    assert!(
+        said.starts_with("warning: this render will take about ")
+            && said.contains("(16384 x 16384 at 65536 spp, about ")
+            && said.contains("help: fewer samples (--spp) or a smaller image"),
+        "{said}"
+    );
+    let estimate = said["warning: this render will take about ".len()..]
+        .split(" on ")
+        .next()
+        .unwrap();
+    assert!(
+        ["hours", "days", "years"]
+            .iter()
+            .any(|u| estimate.ends_with(u)),
+        "{estimate}"
+    );
+    // A quick render says nothing of its time.
+    let scene = write_scene(&dir, "s.toml", GOOD);
+    assert!(!stderr(&expect(&["render", &scene, "--spp", "64"], &dir, 0)).contains("will take"));
+}

@@ -167,6 +167,7 @@ pub(crate) fn render(args: RenderArgs) -> ExitCode {
         for w in &scene.warnings {
             eprintln!("warning: {w}");
         }
+        warn_if_long(&scene, args.threads.map(usize::from));
     }
     let (w, h, spp) = (
         scene.settings.width,
@@ -345,6 +346,32 @@ pub(crate) fn render(args: RenderArgs) -> ExitCode {
         print_stats(&scene.stats, load_time, &rendered.rays, elapsed);
     }
     ExitCode::SUCCESS
+}
+
+/// Renders estimated at over an hour are told so before they start, with what would
+/// shorten them.
+fn warn_if_long(scene: &snell::Scene, threads: Option<usize>) {
+    use snell::render::estimate::{PROBE_FROM_SAMPLES, in_words, render_time};
+    let s = &scene.settings;
+    if (s.width as u64) * (s.height as u64) * (s.spp as u64) < PROBE_FROM_SAMPLES {
+        return;
+    }
+    let threads = threads.unwrap_or_else(rayon::current_num_threads);
+    let e = render_time(scene, &Whitted, threads);
+    if e.seconds > 3600.0 {
+        eprintln!(
+            "warning: this render will take about {} on {threads} threads ({} x {} at {} spp, about {:.2} M samples/s from a probe of {} samples); Ctrl-C stops it and writes what is done",
+            in_words(e.seconds),
+            s.width,
+            s.height,
+            s.spp,
+            e.samples_per_second / 1e6,
+            e.probe_samples
+        );
+        eprintln!(
+            "  help: fewer samples (--spp) or a smaller image (--width, --height) shorten it; --spp 1 at a quarter of the size gives a quick preview"
+        );
+    }
 }
 
 /// Writes the picture and its debug views: one multi-layer EXR, or a PNG per view.

@@ -10,6 +10,8 @@ use std::collections::BTreeMap;
 use std::sync::Mutex;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 
+pub mod estimate;
+
 /// Side of a square tile, in pixels.
 pub const TILE: u32 = 16;
 
