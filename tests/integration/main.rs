@@ -4,6 +4,7 @@
 mod aov;
 mod bad;
 mod cli;
+mod docs;
 mod explain;
 mod meshes;
 mod optics;
