@@ -13,7 +13,7 @@
 # camera rays through the middle of the picture and the first 16,384 random rays, traced 40
 # times each. Streaming the rays from memory costs random rays about an eighth of their
 # speed and moves single runs by 5 to 10 %; the small sets show the work of the walk alone
-# (see docs/ARCHITECTURE.md). --any traces shadow rays (trace_rays --any). Needs Python 3 with
+# (see docs/perf-log.md). --any traces shadow rays (trace_rays --any). Needs Python 3 with
 # numpy and embreex (bench/embree_rays.py writes the rays; Embree traces nothing here).
 set -euo pipefail
 cd "$(dirname "$0")/.."

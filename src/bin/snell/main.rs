@@ -43,7 +43,8 @@ Examples:
                                                 the tree of rays behind one pixel
 
 Exit codes: 0 done, 1 rendering or writing failed, 2 bad command line or scene,
-130 interrupted (Ctrl-C or SIGTERM; the tiles finished were written).
+130 interrupted (Ctrl-C or SIGTERM; the tiles finished were written to NAME.partial.png
+beside the output, which is left as it was).
 The scene format is documented key by key in docs/scene-format.md.";
 
 /// snell renders images from scene files (TOML or JSON) by ray tracing.
@@ -59,7 +60,8 @@ enum Command {
     /// Render a scene to a PNG (sRGB, 8-bit) or EXR (linear, float) image.
     ///
     /// Command-line values override the scene's [image] table. The picture is written to a
-    /// temporary file and renamed into place, so a failed render never leaves a broken image.
+    /// temporary file and renamed into place, so a failed render never leaves a broken image;
+    /// an interrupted one writes what it finished to NAME.partial.png (or .exr) beside it.
     #[command(after_help = EXAMPLES)]
     Render(RenderArgs),
     /// Check a scene without rendering: report every problem with its line and column, or
