@@ -16,6 +16,7 @@
 #![deny(missing_docs)]
 
 pub mod accel;
+pub mod bsdf;
 pub mod camera;
 pub mod checkpoint;
 pub mod film;

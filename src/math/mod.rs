@@ -1,10 +1,14 @@
 //! Small math vocabulary shared by every part of the renderer: rays, boxes, frames,
-//! transforms, robust ray offsets and a deterministic random number generator.
+//! transforms, robust ray offsets, a deterministic random number generator, and the warps
+//! that sampling builds on.
 
 mod aabb;
+#[cfg(test)]
+pub(crate) mod chi2;
 mod frame;
 mod offset;
 mod rng;
+pub mod sampling;
 mod transform;
 
 pub use aabb::Aabb;

@@ -1,0 +1,98 @@
+//! Scattering at a surface point as pure functions of two directions in the local shading
+//! frame (`z` the shading normal; `wo` toward the viewer, `wi` toward the light, both unit):
+//! the value `f(wo, wi)`, importance sampling of `wi`, and the density of that sampling. No
+//! scene types: a material builds a [`Bsdf`] at a hit from its textured parameters, and each
+//! variant is tested on its own (chi-square of its sampling, energy, reciprocity).
+
+mod conductor;
+pub mod fresnel;
+mod lambert;
+pub mod microfacet;
+
+pub use conductor::{Conductor, ConductorFresnel};
+pub use lambert::Lambert;
+
+use crate::math::{Color, Vec2, Vec3A};
+
+/// Which kind of scattering a sample took.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Lobe {
+    /// Diffuse reflection (spread over the hemisphere).
+    DiffuseReflection,
+    /// Reflection about rough microfacets (a lobe around the mirror direction).
+    GlossyReflection,
+    /// Mirror reflection (a delta).
+    SpecularReflection,
+}
+
+impl Lobe {
+    /// Whether the lobe is a delta (a mirror or a smooth refraction), which light sampling
+    /// cannot reach and multiple importance sampling leaves to the BSDF.
+    pub fn is_specular(self) -> bool {
+        match self {
+            Lobe::DiffuseReflection | Lobe::GlossyReflection => false,
+            Lobe::SpecularReflection => true,
+        }
+    }
+}
+
+/// A sampled direction with what the integrator needs of it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BsdfSample {
+    /// The incident direction, unit, in the local frame.
+    pub wi: Vec3A,
+    /// `f(wo, wi)`.
+    pub f: Color,
+    /// The density with which `wi` was chosen, per unit solid angle (for a specular lobe,
+    /// the probability of choosing that lobe).
+    pub pdf: f32,
+    /// The lobe taken.
+    pub lobe: Lobe,
+}
+
+/// A BSDF, closed set, dispatched by `match`; one file per variant.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Bsdf {
+    /// Lambertian diffuse reflection.
+    Lambert(Lambert),
+    /// A metal, smooth or rough.
+    Conductor(Conductor),
+}
+
+impl Bsdf {
+    /// `f(wo, wi)`: reflected radiance per unit irradiance, per steradian.
+    pub fn f(&self, wo: Vec3A, wi: Vec3A) -> Color {
+        match self {
+            Bsdf::Lambert(b) => b.f(wo, wi),
+            Bsdf::Conductor(b) => b.f(wo, wi),
+        }
+    }
+
+    /// Chooses `wi` for `wo` from the uniform point `u` (and `uc`, for choosing a lobe);
+    /// `None` when the sample is absorbed or `wo` lies in the surface.
+    pub fn sample(&self, wo: Vec3A, u: Vec2, uc: f32) -> Option<BsdfSample> {
+        let _ = uc;
+        match self {
+            Bsdf::Lambert(b) => b.sample(wo, u),
+            Bsdf::Conductor(b) => b.sample(wo, u),
+        }
+    }
+
+    /// The density with which [`Bsdf::sample`] chooses `wi` for `wo`, per unit solid angle
+    /// (0 for the directions only a specular lobe reaches).
+    pub fn pdf(&self, wo: Vec3A, wi: Vec3A) -> f32 {
+        match self {
+            Bsdf::Lambert(b) => b.pdf(wo, wi),
+            Bsdf::Conductor(b) => b.pdf(wo, wi),
+        }
+    }
+}
+
+/// Whether two local directions lie on the same side of the surface.
+#[inline]
+pub(crate) fn same_hemisphere(a: Vec3A, b: Vec3A) -> bool {
+    a.z * b.z > 0.0
+}
+
+#[cfg(test)]
+pub(crate) mod harness;
