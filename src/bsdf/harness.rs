@@ -60,6 +60,11 @@ pub(crate) fn chi2_all_incidences(name: &str, bsdf: &Bsdf) {
 /// midpoint rule on a grid of the sphere, fine near both poles where narrow lobes of light
 /// arriving straight on lie (`z = ±(1 - t^2)`).
 pub(crate) fn albedo(bsdf: &Bsdf, wo: Vec3A) -> Vec3A {
+    albedo_weighted(bsdf, wo, |_| 1.0)
+}
+
+/// [`albedo`] with each direction's `f` weighted by `weight(wi)`.
+pub(crate) fn albedo_weighted(bsdf: &Bsdf, wo: Vec3A, weight: impl Fn(Vec3A) -> f32) -> Vec3A {
     let (nt, nphi) = (1000, 400);
     let dphi = 2.0 * PI as f64 / nphi as f64;
     let mut sum = Vec3A::ZERO;
@@ -77,7 +82,7 @@ pub(crate) fn albedo(bsdf: &Bsdf, wo: Vec3A) -> Vec3A {
                     (r * phi.sin()) as f32,
                     (side * z) as f32,
                 );
-                ring += bsdf.f(wo, wi);
+                ring += bsdf.f(wo, wi) * weight(wi);
             }
             sum += ring * (z * dz * dphi) as f32;
         }

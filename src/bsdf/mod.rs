@@ -5,11 +5,13 @@
 //! variant is tested on its own (chi-square of its sampling, energy, reciprocity).
 
 mod conductor;
+mod dielectric;
 pub mod fresnel;
 mod lambert;
 pub mod microfacet;
 
 pub use conductor::{Conductor, ConductorFresnel};
+pub use dielectric::Dielectric;
 pub use lambert::Lambert;
 
 use crate::math::{Color, Vec2, Vec3A};
@@ -23,6 +25,10 @@ pub enum Lobe {
     GlossyReflection,
     /// Mirror reflection (a delta).
     SpecularReflection,
+    /// Refraction through rough microfacets.
+    GlossyTransmission,
+    /// Refraction through a smooth boundary (a delta).
+    SpecularTransmission,
 }
 
 impl Lobe {
@@ -30,8 +36,8 @@ impl Lobe {
     /// cannot reach and multiple importance sampling leaves to the BSDF.
     pub fn is_specular(self) -> bool {
         match self {
-            Lobe::DiffuseReflection | Lobe::GlossyReflection => false,
-            Lobe::SpecularReflection => true,
+            Lobe::DiffuseReflection | Lobe::GlossyReflection | Lobe::GlossyTransmission => false,
+            Lobe::SpecularReflection | Lobe::SpecularTransmission => true,
         }
     }
 }
@@ -57,6 +63,8 @@ pub enum Bsdf {
     Lambert(Lambert),
     /// A metal, smooth or rough.
     Conductor(Conductor),
+    /// Glass, smooth or rough.
+    Dielectric(Dielectric),
 }
 
 impl Bsdf {
@@ -65,16 +73,17 @@ impl Bsdf {
         match self {
             Bsdf::Lambert(b) => b.f(wo, wi),
             Bsdf::Conductor(b) => b.f(wo, wi),
+            Bsdf::Dielectric(b) => b.f(wo, wi),
         }
     }
 
     /// Chooses `wi` for `wo` from the uniform point `u` (and `uc`, for choosing a lobe);
     /// `None` when the sample is absorbed or `wo` lies in the surface.
     pub fn sample(&self, wo: Vec3A, u: Vec2, uc: f32) -> Option<BsdfSample> {
-        let _ = uc;
         match self {
             Bsdf::Lambert(b) => b.sample(wo, u),
             Bsdf::Conductor(b) => b.sample(wo, u),
+            Bsdf::Dielectric(b) => b.sample(wo, u, uc),
         }
     }
 
@@ -84,6 +93,7 @@ impl Bsdf {
         match self {
             Bsdf::Lambert(b) => b.pdf(wo, wi),
             Bsdf::Conductor(b) => b.pdf(wo, wi),
+            Bsdf::Dielectric(b) => b.pdf(wo, wi),
         }
     }
 }
