@@ -5,7 +5,7 @@
 
 use super::Bsdf;
 use crate::math::chi2::{SphereBins, chi2_sphere};
-use crate::math::{Rng, Vec3A};
+use crate::math::{Rng, Vec3A, hash_seed};
 use std::f32::consts::PI;
 
 /// Directions of the light's viewer `wo` the checks run at: from straight above to grazing,
@@ -23,14 +23,21 @@ pub(crate) fn incidences() -> Vec<Vec3A> {
 
 /// Chi-square of the sampling at every incidence, and the consistency of each sample.
 pub(crate) fn chi2_all_incidences(name: &str, bsdf: &Bsdf) {
-    let mut rng = Rng::new(7);
     for wo in incidences() {
         let mut inconsistent = None;
+        // The lobe choice from a hash of the sample's number, not a second PCG stream:
+        // streams of one generator can be correlated, and a correlated choice biases the
+        // directions it keeps.
+        let mut k = 0u64;
+        let mut uc = || {
+            k += 1;
+            (hash_seed(&[k, 0x10be]) >> 40) as f32 / (1u64 << 24) as f32
+        };
         let result = chi2_sphere(
             &format!("{name} at wo = {wo}"),
             SphereBins::default(),
             |u| {
-                let s = bsdf.sample(wo, u, rng.next_f32())?;
+                let s = bsdf.sample(wo, u, uc())?;
                 if s.lobe.is_specular() {
                     return None;
                 }

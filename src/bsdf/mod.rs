@@ -8,11 +8,16 @@ mod conductor;
 mod dielectric;
 pub mod fresnel;
 mod lambert;
+pub mod metals;
 pub mod microfacet;
+mod plastic;
+mod thin_dielectric;
 
 pub use conductor::{Conductor, ConductorFresnel};
 pub use dielectric::Dielectric;
 pub use lambert::Lambert;
+pub use plastic::{Plastic, internal_diffuse_reflectance};
+pub use thin_dielectric::ThinDielectric;
 
 use crate::math::{Color, Vec2, Vec3A};
 
@@ -65,6 +70,10 @@ pub enum Bsdf {
     Conductor(Conductor),
     /// Glass, smooth or rough.
     Dielectric(Dielectric),
+    /// A thin pane of glass.
+    ThinDielectric(ThinDielectric),
+    /// A diffuse base under a dielectric coat.
+    Plastic(Plastic),
 }
 
 impl Bsdf {
@@ -74,6 +83,8 @@ impl Bsdf {
             Bsdf::Lambert(b) => b.f(wo, wi),
             Bsdf::Conductor(b) => b.f(wo, wi),
             Bsdf::Dielectric(b) => b.f(wo, wi),
+            Bsdf::ThinDielectric(b) => b.f(wo, wi),
+            Bsdf::Plastic(b) => b.f(wo, wi),
         }
     }
 
@@ -84,6 +95,8 @@ impl Bsdf {
             Bsdf::Lambert(b) => b.sample(wo, u),
             Bsdf::Conductor(b) => b.sample(wo, u),
             Bsdf::Dielectric(b) => b.sample(wo, u, uc),
+            Bsdf::ThinDielectric(b) => b.sample(wo, u, uc),
+            Bsdf::Plastic(b) => b.sample(wo, u, uc),
         }
     }
 
@@ -94,6 +107,8 @@ impl Bsdf {
             Bsdf::Lambert(b) => b.pdf(wo, wi),
             Bsdf::Conductor(b) => b.pdf(wo, wi),
             Bsdf::Dielectric(b) => b.pdf(wo, wi),
+            Bsdf::ThinDielectric(b) => b.pdf(wo, wi),
+            Bsdf::Plastic(b) => b.pdf(wo, wi),
         }
     }
 }
