@@ -55,6 +55,23 @@ impl Disk {
     }
 }
 
+impl Disk {
+    /// The disk's area.
+    pub fn area(&self) -> f32 {
+        std::f32::consts::PI * self.radius * self.radius
+    }
+
+    /// A point on the disk, every one equally likely (density `1 / area`).
+    pub fn sample_area(&self, u: Vec2) -> super::SurfaceSample {
+        let d = crate::math::sampling::uniform_disk_concentric(u) * self.radius;
+        super::SurfaceSample {
+            point: self.center + d.x * self.frame.u + d.y * self.frame.v,
+            normal: self.frame.w,
+            pdf: 1.0 / self.area(),
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::super::Shape;

@@ -25,6 +25,32 @@ pub use rect::Rect;
 pub use sphere::Sphere;
 pub use triangle::Triangle;
 
+#[cfg(test)]
+mod sample_tests;
+
+/// A point sampled on a shape (an area light's), with the density it was chosen with:
+/// per unit area, or per unit solid angle where the method says so.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SurfaceSample {
+    /// The point, on the surface.
+    pub point: Vec3A,
+    /// The surface's unit normal there (its front side).
+    pub normal: Vec3A,
+    /// The density.
+    pub pdf: f32,
+}
+
+/// A density per unit area at `point` (normal `normal`) as a density per unit solid angle
+/// seen from `from`: `pdf d^2 / |cos theta|`; `None` where the surface is seen edge-on or
+/// `from` is on it.
+pub fn area_to_solid_angle(pdf: f32, from: Vec3A, point: Vec3A, normal: Vec3A) -> Option<f32> {
+    let d = point - from;
+    let d2 = d.length_squared();
+    let cos = (d.dot(normal) / d2.sqrt()).abs();
+    let v = pdf * d2 / cos;
+    (d2 > 0.0 && cos > 0.0 && v.is_finite()).then_some(v)
+}
+
 use crate::math::{Aabb, Ray, Vec2, Vec3A};
 
 /// The nearest intersection found by a shape: the ray parameter and which part of the

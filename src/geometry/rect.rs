@@ -117,6 +117,22 @@ fn cross_as_glam(a: [f32; 3], b: [f32; 3]) -> [f32; 3] {
     ]
 }
 
+impl Rect {
+    /// The parallelogram's area.
+    pub fn area(&self) -> f32 {
+        self.edge_u.cross(self.edge_v).length()
+    }
+
+    /// A point on the parallelogram, every one equally likely (density `1 / area`).
+    pub fn sample_area(&self, u: Vec2) -> super::SurfaceSample {
+        super::SurfaceSample {
+            point: self.corner + u.x * self.edge_u + u.y * self.edge_v,
+            normal: self.normal,
+            pdf: 1.0 / self.area(),
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::super::Shape;

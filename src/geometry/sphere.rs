@@ -107,6 +107,69 @@ impl Sphere {
     }
 }
 
+impl Sphere {
+    /// The sphere's area.
+    pub fn area(&self) -> f32 {
+        4.0 * std::f32::consts::PI * self.radius * self.radius
+    }
+
+    /// A point on the sphere, every one equally likely (density `1 / area`).
+    pub fn sample_area(&self, u: Vec2) -> super::SurfaceSample {
+        let n = crate::math::sampling::uniform_sphere(u);
+        super::SurfaceSample {
+            point: self.center + self.radius * n,
+            normal: n,
+            pdf: 1.0 / self.area(),
+        }
+    }
+
+    /// The cosine of the half-angle of the cone the sphere fills seen from `from`, or
+    /// `None` when `from` is inside it (it then fills every direction).
+    fn cone_cos(&self, from: Vec3A) -> Option<f32> {
+        let d2 = (self.center - from).length_squared();
+        let r2 = self.radius * self.radius;
+        (d2 > r2 * 1.0001).then(|| (1.0 - r2 / d2).max(0.0).sqrt())
+    }
+
+    /// A point of the sphere seen from `from`, chosen uniformly within the cone of
+    /// directions it fills (from outside; inside, by area), with its density per unit solid
+    /// angle at `from`. Only the visible cap is reached, so no sample is wasted on the back.
+    pub fn sample_solid_angle(&self, from: Vec3A, u: Vec2) -> Option<super::SurfaceSample> {
+        let Some(cos_max) = self.cone_cos(from) else {
+            let mut s = self.sample_area(u);
+            s.pdf = super::area_to_solid_angle(s.pdf, from, s.point, s.normal)?;
+            return Some(s);
+        };
+        let axis = self.center - from;
+        let dist = axis.length();
+        let frame = crate::math::Frame::from_axis(axis / dist);
+        let dir = frame.to_world(crate::math::sampling::uniform_cone(u, cos_max));
+        // The nearer crossing of the ray `from + t dir` with the sphere; a direction that
+        // rounding put just outside the cone takes the tangent point.
+        let b = dir.dot(axis);
+        let disc = b * b - (dist * dist - self.radius * self.radius);
+        let t = b - disc.max(0.0).sqrt();
+        let point = from + t * dir;
+        Some(super::SurfaceSample {
+            point,
+            normal: (point - self.center).normalize_or(dir),
+            pdf: crate::math::sampling::uniform_cone_pdf(cos_max),
+        })
+    }
+
+    /// The density per unit solid angle with which [`Sphere::sample_solid_angle`] from
+    /// `from` picks `point`, a point of the sphere that `from` sees.
+    pub fn solid_angle_pdf(&self, from: Vec3A, point: Vec3A) -> f32 {
+        match self.cone_cos(from) {
+            Some(cos_max) => crate::math::sampling::uniform_cone_pdf(cos_max),
+            None => {
+                let n = (point - self.center).normalize_or(Vec3A::Z);
+                super::area_to_solid_angle(1.0 / self.area(), from, point, n).unwrap_or(0.0)
+            }
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::super::Shape;

@@ -498,6 +498,24 @@ impl Triangle {
     }
 }
 
+impl Triangle {
+    /// The triangle's area.
+    pub fn area(&self) -> f32 {
+        0.5 * self.e1.cross(self.e2).length()
+    }
+
+    /// A point on the triangle, every one equally likely (density `1 / area`).
+    pub fn sample_area(&self, u: Vec2) -> super::SurfaceSample {
+        let b = crate::math::sampling::uniform_triangle(u);
+        // b.x weighs the first corner, b.y the second, the rest the third.
+        super::SurfaceSample {
+            point: self.a + b.y * self.e1 + (1.0 - b.x - b.y) * self.e2,
+            normal: self.normal,
+            pdf: 1.0 / self.area(),
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::super::Shape;

@@ -1,0 +1,146 @@
+//! The sampling of shapes for area lights, seen from a point as a light sampler sees it:
+//! directions to the sampled points follow the densities the shapes report, converted to
+//! solid angle, by the chi-square test of src/math/chi2.rs; and the densities integrate to
+//! the shape's area.
+
+use super::{Disk, Rect, ShapeHit, Sphere, SurfaceSample, Triangle, area_to_solid_angle};
+use crate::math::chi2::{SphereBins, chi2_sphere};
+use crate::math::{Ray, Vec2, Vec3A};
+
+/// Chi-square of the directions from `from` to points drawn by `sample` (densities per unit
+/// area), against the density per solid angle of the point each direction meets first.
+fn check_area_sampling(
+    name: &str,
+    from: Vec3A,
+    sample: impl Fn(Vec2) -> SurfaceSample,
+    hit: impl Fn(&Ray) -> Option<ShapeHit>,
+    area_pdf: f32,
+    normal_at: impl Fn(Vec3A) -> Vec3A,
+) {
+    chi2_sphere(
+        name,
+        SphereBins::default(),
+        |u| {
+            let s = sample(u);
+            assert!(
+                (s.pdf - area_pdf).abs() <= 1e-5 * area_pdf,
+                "{name}: pdf {}",
+                s.pdf
+            );
+            Some((s.point - from).normalize())
+        },
+        |dir| match hit(&Ray::new(from, dir)) {
+            Some(h) => {
+                let p = from + h.t * dir;
+                area_to_solid_angle(area_pdf, from, p, normal_at(p)).unwrap_or(0.0)
+            }
+            None => 0.0,
+        },
+    )
+    .unwrap();
+}
+
+#[test]
+fn a_rectangle_sampled_by_area() {
+    let r = Rect::new(
+        Vec3A::new(-1.0, 2.0, -1.0),
+        Vec3A::new(2.0, 0.0, 0.0),
+        Vec3A::new(0.5, 0.0, 1.5),
+    )
+    .unwrap();
+    assert!((r.area() - 3.0).abs() < 1e-6);
+    let n = r.sample_area(Vec2::ZERO).normal;
+    check_area_sampling(
+        "rectangle",
+        Vec3A::new(0.3, 0.0, 0.2),
+        |u| r.sample_area(u),
+        |ray| r.intersect(ray, f32::INFINITY),
+        1.0 / 3.0,
+        |_| n,
+    );
+}
+
+#[test]
+fn a_disk_sampled_by_area() {
+    let d = Disk::new(Vec3A::new(0.0, 0.0, 3.0), Vec3A::new(0.2, 0.1, -1.0), 1.5);
+    let n = d.frame.w;
+    check_area_sampling(
+        "disk",
+        Vec3A::new(0.5, -0.2, 0.0),
+        |u| d.sample_area(u),
+        |ray| d.intersect(ray, f32::INFINITY),
+        1.0 / d.area(),
+        |_| n,
+    );
+}
+
+#[test]
+fn a_triangle_sampled_by_area() {
+    let t = Triangle::new(
+        Vec3A::new(-1.0, -1.0, 2.0),
+        Vec3A::new(2.0, -0.5, 2.5),
+        Vec3A::new(0.0, 1.5, 1.5),
+    )
+    .unwrap();
+    let n = t.sample_area(Vec2::ZERO).normal;
+    check_area_sampling(
+        "triangle",
+        Vec3A::ZERO,
+        |u| t.sample_area(u),
+        |ray| t.intersect(ray, f32::INFINITY),
+        1.0 / t.area(),
+        |_| n,
+    );
+}
+
+/// From inside, every direction meets the sphere once: area sampling seen from there.
+#[test]
+fn a_sphere_sampled_by_area_from_inside() {
+    let s = Sphere {
+        center: Vec3A::new(0.2, 0.1, 0.0),
+        radius: 2.0,
+    };
+    let c = s.center;
+    check_area_sampling(
+        "sphere from inside",
+        Vec3A::new(0.5, -0.4, 0.3),
+        |u| s.sample_area(u),
+        |ray| s.intersect(ray, f32::INFINITY),
+        1.0 / s.area(),
+        |p| (p - c).normalize(),
+    );
+}
+
+/// From outside, by the cone it fills: the directions fill the cone evenly, only the
+/// visible cap is reached, and the reported density is the cone's.
+#[test]
+fn a_sphere_sampled_by_solid_angle() {
+    let s = Sphere {
+        center: Vec3A::new(1.0, 2.0, 4.0),
+        radius: 1.5,
+    };
+    for from in [Vec3A::ZERO, Vec3A::new(1.0, 2.0, 6.0)] {
+        chi2_sphere(
+            &format!("sphere by solid angle from {from}"),
+            SphereBins::default(),
+            |u| {
+                let p = s.sample_solid_angle(from, u).unwrap();
+                let dir = (p.point - from).normalize();
+                // On the cap that `from` sees: (p - c) . (from - c) >= r^2.
+                let cap = (p.point - s.center).dot(from - s.center);
+                assert!(
+                    cap >= s.radius * s.radius * (1.0 - 1e-4),
+                    "a point on the far side"
+                );
+                assert!((p.point - s.center).length() - s.radius < 1e-4);
+                assert!((p.pdf - s.solid_angle_pdf(from, p.point)).abs() < 1e-6);
+                Some(dir)
+            },
+            |dir| match s.intersect(&Ray::new(from, dir), f32::INFINITY) {
+                Some(h) => s.solid_angle_pdf(from, from + h.t * dir),
+                None => 0.0,
+            },
+        )
+        .unwrap();
+    }
+}
