@@ -28,6 +28,7 @@ pub mod math;
 pub mod mesh_file;
 pub mod output;
 pub mod render;
+pub mod sampler;
 pub mod scene;
 pub mod texture;
 

@@ -1,0 +1,99 @@
+//! Owen-scrambled Sobol points (Burley, "Practical Hash-based Owen Scrambling", 2020), padded:
+//! every request, one number or two, draws the first dimensions of a Sobol sequence of its
+//! own, scrambled and shuffled by a hash of (render seed, pixel, request), so that each pair
+//! is a stratified (0, 2)-sequence over a pixel's samples and the pairs are independent of
+//! one another. Up to 2^16 samples a pixel, as many as [`crate::scene::Limits`] allows.
+
+use crate::math::{Vec2, hash_seed};
+
+/// Owen-scrambled, padded Sobol points.
+#[derive(Clone, Debug)]
+pub struct Sobol {
+    seed: u64,
+    pixel_seed: u64,
+    index: u32,
+    dimension: u32,
+}
+
+/// Samples per pixel the sequence holds.
+pub const MAX_SAMPLES: u32 = 1 << 16;
+
+impl Sobol {
+    /// A sampler for the render seeded by `seed`.
+    pub fn new(seed: u64) -> Self {
+        Sobol {
+            seed,
+            pixel_seed: 0,
+            index: 0,
+            dimension: 0,
+        }
+    }
+
+    /// Starts sample `index` (below [`MAX_SAMPLES`]; larger ones wrap) of pixel `(x, y)`.
+    pub fn start(&mut self, x: u32, y: u32, index: u32) {
+        self.pixel_seed = hash_seed(&[self.seed, x as u64, y as u64]);
+        self.index = index % MAX_SAMPLES;
+        self.dimension = 0;
+    }
+
+    /// The seed of the next request's own sequence.
+    fn request(&mut self) -> u32 {
+        let d = self.dimension;
+        self.dimension += 1;
+        hash_seed(&[self.pixel_seed, d as u64]) as u32
+    }
+
+    /// The next number.
+    pub fn next_1d(&mut self) -> f32 {
+        let seed = self.request();
+        sobol_burley::sample(self.index, 0, seed)
+    }
+
+    /// The next two numbers: a point of a stratified 2D sequence.
+    pub fn next_2d(&mut self) -> Vec2 {
+        let seed = self.request();
+        Vec2::new(
+            sobol_burley::sample(self.index, 0, seed),
+            sobol_burley::sample(self.index, 1, seed),
+        )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A pixel's first 2^k samples of any request are a (0, k, 2)-net: every box of the
+    /// square `2^a` wide and `2^(k - a)` high holds exactly one point. This is what makes
+    /// Sobol sampling converge faster than independent numbers.
+    #[test]
+    fn a_pixels_first_power_of_two_samples_are_stratified_in_every_pair() {
+        let mut s = Sobol::new(42);
+        for k in [4u32, 6, 8] {
+            let n = 1u32 << k;
+            for request in 0..4 {
+                let points: Vec<Vec2> = (0..n)
+                    .map(|i| {
+                        s.start(5, 9, i);
+                        for _ in 0..request {
+                            s.next_2d();
+                        }
+                        s.next_2d()
+                    })
+                    .collect();
+                for a in 0..=k {
+                    let (w, h) = (1u32 << a, 1u32 << (k - a));
+                    let mut cells = vec![0u32; n as usize];
+                    for p in &points {
+                        let (i, j) = ((p.x * w as f32) as u32, (p.y * h as f32) as u32);
+                        cells[(j * w + i) as usize] += 1;
+                    }
+                    assert!(
+                        cells.iter().all(|&c| c == 1),
+                        "{n} samples, request {request}, boxes {w} x {h}: {cells:?}"
+                    );
+                }
+            }
+        }
+    }
+}
