@@ -5,6 +5,7 @@
 mod aabb;
 #[cfg(test)]
 pub(crate) mod chi2;
+pub mod distribution;
 mod frame;
 mod offset;
 mod rng;
