@@ -22,6 +22,7 @@ pub mod checkpoint;
 pub mod film;
 pub mod geometry;
 pub mod integrator;
+pub mod job;
 pub mod light;
 pub mod material;
 pub mod math;

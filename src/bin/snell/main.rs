@@ -162,12 +162,18 @@ fn check(path: &Path, limits: &Limits) -> ExitCode {
 
 /// Checks the image sides and samples per pixel after the command line's overrides.
 pub(crate) fn check_size_and_spp(s: &RenderSettings, limits: &Limits) -> Result<(), ExitCode> {
-    for (what, v) in [("--width", s.width), ("--height", s.height)] {
-        RenderSettings::check_side(what, v).map_err(|e| usage_error(&e, None))?;
+    snell::job::check_settings(s, limits).map_err(job_error)
+}
+
+/// Prints why a job cannot start; exit code 2 (a bad scene or command line).
+pub(crate) fn job_error(e: snell::job::JobError) -> ExitCode {
+    match e {
+        snell::job::JobError::Scene(e) => {
+            print_scene_error(&e);
+            ExitCode::from(2)
+        }
+        snell::job::JobError::Settings { message, help } => usage_error(&message, help.as_deref()),
     }
-    limits
-        .check_spp(s.spp)
-        .map_err(|(e, help)| usage_error(&e, help.as_deref()))
 }
 
 pub(crate) fn usage_error(msg: &str, help: Option<&str>) -> ExitCode {

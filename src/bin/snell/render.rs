@@ -2,11 +2,12 @@
 //! views and statistics.
 
 use crate::args::RenderArgs;
-use crate::{check_size_and_spp, load, usage_error};
+use crate::{job_error, usage_error};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use snell::checkpoint::Checkpoint;
 use snell::integrator::Whitted;
 use snell::integrator::aov::{Aov, render_aovs};
+use snell::job::{Overrides, RenderJob};
 use snell::output::{ExrLayer, OutputError, OutputFormat, PendingOutput, encode_exr_layers};
 use snell::render::{RenderOptions, TileStore};
 use std::io::IsTerminal;
@@ -65,70 +66,22 @@ pub(crate) fn render(args: RenderArgs) -> ExitCode {
         Ok(l) => l,
         Err(code) => return code,
     };
-    let load_start = Instant::now();
-    let mut scene = match load(&scene_path, &limits) {
-        Ok(s) => s,
-        Err(code) => return code,
+    let overrides = Overrides {
+        width: args.width,
+        height: args.height,
+        spp: args.spp,
+        seed: args.seed,
     };
-    let load_time = load_start.elapsed();
-    let s = &mut scene.settings;
-    if let Some(c) = &resumed {
-        s.width = c.width;
-        s.height = c.height;
-        s.spp = c.spp;
-        s.seed = c.seed;
-    }
-    if let Some(w) = args.width {
-        s.width = w;
-    }
-    if let Some(h) = args.height {
-        s.height = h;
-    }
-    if let Some(n) = args.spp {
-        s.spp = n;
-    }
-    if let Some(seed) = args.seed {
-        s.seed = seed;
-    }
-    if let Err(code) = check_size_and_spp(s, &limits) {
-        return code;
-    }
-    if let Err((e, help)) = limits.check_pixels(s.width, s.height) {
-        return usage_error(&e, help.as_deref());
-    }
-    // Refuse a render the machine cannot hold before spending time on it.
-    let estimate = snell::scene::memory_estimate(&scene);
-    if let Some(available) = snell::scene::available_memory()
-        && let Err(e) = estimate.check(available)
-    {
-        return usage_error(&e, Some("render a smaller image (--width, --height)"));
-    }
-    let scene_bytes = std::fs::read(&scene_path).unwrap_or_default();
-    let fingerprint = snell::checkpoint::fingerprint(
-        &scene_bytes,
-        scene.settings.width,
-        scene.settings.height,
-        scene.settings.spp,
-        scene.settings.seed,
-    );
-    if let Some(c) = &resumed
-        && c.fingerprint != fingerprint
-    {
-        return usage_error(
-            "the scene file or the settings changed since the checkpoint was saved, so resuming would not give the same picture",
-            Some("render again without --resume, or restore the scene as it was"),
-        );
-    }
+    let job = match RenderJob::prepare(&scene_path, &overrides, &limits, resumed.as_ref()) {
+        Ok(job) => job,
+        Err(e) => return job_error(e),
+    };
+    let (scene, fingerprint, load_time) = (job.scene, job.fingerprint, job.load_time);
     let out_path = args
         .output
         .clone()
         .or_else(|| resumed.as_ref().map(|c| c.output.clone()))
-        .unwrap_or_else(|| {
-            // `cap.day.toml` gives `cap.day.png` (with_extension would cut it to `cap.png`).
-            let mut name = scene_path.file_stem().unwrap_or_default().to_os_string();
-            name.push(".png");
-            PathBuf::from(name)
-        });
+        .unwrap_or_else(|| RenderJob::default_output(&scene_path));
     let checkpoint_path = args.checkpoint.clone().or_else(|| args.resume.clone());
     if !(args.checkpoint_every > 0.0 && args.checkpoint_every.is_finite()) {
         return usage_error(

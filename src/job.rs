@@ -1,0 +1,218 @@
+//! A render job: a scene file with the overrides a caller gives (the command line today; a
+//! preview server or a Python module later), checked against the limits and the machine's
+//! memory before any work, with the fingerprint a checkpoint must match. What every caller
+//! of a render must do lives here once, not in each front end.
+
+use crate::checkpoint::{Checkpoint, fingerprint};
+use crate::scene::{Limits, RenderSettings, Scene, SceneError, available_memory, memory_estimate};
+use std::path::{Path, PathBuf};
+use std::time::{Duration, Instant};
+
+/// Values that replace the scene's `[image]` settings.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Overrides {
+    /// Image width in pixels.
+    pub width: Option<u32>,
+    /// Image height in pixels.
+    pub height: Option<u32>,
+    /// Samples per pixel.
+    pub spp: Option<u32>,
+    /// Sample seed.
+    pub seed: Option<u64>,
+}
+
+/// Why a job cannot start.
+#[derive(Debug)]
+pub enum JobError {
+    /// The scene file has problems (each located in the file).
+    Scene(SceneError),
+    /// The settings ask for what cannot be done: a message and, where there is one, what
+    /// to do instead.
+    Settings {
+        /// What is wrong.
+        message: String,
+        /// How to put it right.
+        help: Option<String>,
+    },
+}
+
+/// A scene loaded, its settings overridden and checked: ready to render.
+#[derive(Debug)]
+pub struct RenderJob {
+    /// The scene, with the overrides applied.
+    pub scene: Scene,
+    /// The scene file.
+    pub scene_path: PathBuf,
+    /// What a checkpoint of this render must carry to be resumed by it.
+    pub fingerprint: u64,
+    /// Time to read and build the scene.
+    pub load_time: Duration,
+}
+
+fn settings_error(message: impl Into<String>, help: Option<String>) -> JobError {
+    JobError::Settings {
+        message: message.into(),
+        help,
+    }
+}
+
+/// Checks an image's sides and samples against `limits` (`what` names the sides, as the
+/// caller's user knows them: `--width`).
+pub fn check_settings(s: &RenderSettings, limits: &Limits) -> Result<(), JobError> {
+    for (what, v) in [("--width", s.width), ("--height", s.height)] {
+        RenderSettings::check_side(what, v).map_err(|e| settings_error(e, None))?;
+    }
+    limits
+        .check_spp(s.spp)
+        .map_err(|(e, help)| settings_error(e, help))?;
+    limits
+        .check_pixels(s.width, s.height)
+        .map_err(|(e, help)| settings_error(e, help))
+}
+
+impl RenderJob {
+    /// Loads `scene_path` and applies, in order, a resumed checkpoint's settings and then
+    /// `overrides`; refuses settings past `limits`, a render the machine's memory cannot
+    /// hold, and a checkpoint of another scene or other settings.
+    pub fn prepare(
+        scene_path: &Path,
+        overrides: &Overrides,
+        limits: &Limits,
+        resumed: Option<&Checkpoint>,
+    ) -> Result<RenderJob, JobError> {
+        let start = Instant::now();
+        let mut scene = crate::scene::load_with(scene_path, limits).map_err(JobError::Scene)?;
+        let load_time = start.elapsed();
+        let s = &mut scene.settings;
+        if let Some(c) = resumed {
+            (s.width, s.height, s.spp, s.seed) = (c.width, c.height, c.spp, c.seed);
+        }
+        s.width = overrides.width.unwrap_or(s.width);
+        s.height = overrides.height.unwrap_or(s.height);
+        s.spp = overrides.spp.unwrap_or(s.spp);
+        s.seed = overrides.seed.unwrap_or(s.seed);
+        check_settings(s, limits)?;
+        if let Some(available) = available_memory()
+            && let Err(e) = memory_estimate(&scene).check(available)
+        {
+            return Err(settings_error(
+                e,
+                Some("render a smaller image (--width, --height)".into()),
+            ));
+        }
+        let bytes = std::fs::read(scene_path).unwrap_or_default();
+        let s = &scene.settings;
+        let fingerprint = fingerprint(&bytes, s.width, s.height, s.spp, s.seed);
+        if let Some(c) = resumed
+            && c.fingerprint != fingerprint
+        {
+            return Err(settings_error(
+                "the scene file or the settings changed since the checkpoint was saved, so resuming would not give the same picture",
+                Some("render again without --resume, or restore the scene as it was".into()),
+            ));
+        }
+        Ok(RenderJob {
+            scene,
+            scene_path: scene_path.to_path_buf(),
+            fingerprint,
+            load_time,
+        })
+    }
+
+    /// The output a render of `scene_path` writes when none is named: the scene's name with
+    /// `.png`, in the current folder (`cap.day.toml` gives `cap.day.png`).
+    pub fn default_output(scene_path: &Path) -> PathBuf {
+        let mut name = scene_path.file_stem().unwrap_or_default().to_os_string();
+        name.push(".png");
+        PathBuf::from(name)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn scene_file(name: &str) -> PathBuf {
+        let dir = std::env::temp_dir().join(format!("snell-job-{}-{name}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("s.toml");
+        std::fs::write(
+            &path,
+            "[image]\nwidth = 8\nheight = 6\n[camera]\nlook_at = [0, 0, -1]\n[materials.m]\ncolor = 1\n[[objects]]\ntype = \"sphere\"\ncenter = [0, 0, -3]\nradius = 1\nmaterial = \"m\"\n",
+        )
+        .unwrap();
+        path
+    }
+
+    #[test]
+    fn overrides_replace_the_scenes_settings_and_are_checked() {
+        let path = scene_file("overrides");
+        let limits = Limits::default();
+        let job = RenderJob::prepare(&path, &Overrides::default(), &limits, None).unwrap();
+        assert_eq!(
+            (job.scene.settings.width, job.scene.settings.height),
+            (8, 6)
+        );
+        let o = Overrides {
+            width: Some(32),
+            spp: Some(4),
+            seed: Some(9),
+            ..Overrides::default()
+        };
+        let job2 = RenderJob::prepare(&path, &o, &limits, None).unwrap();
+        let s = &job2.scene.settings;
+        assert_eq!((s.width, s.height, s.spp, s.seed), (32, 6, 4, 9));
+        assert_ne!(
+            job.fingerprint, job2.fingerprint,
+            "the settings are in the fingerprint"
+        );
+        let bad = Overrides {
+            spp: Some(10),
+            ..Overrides::default()
+        };
+        match RenderJob::prepare(&path, &bad, &limits, None) {
+            Err(JobError::Settings { message, help }) => {
+                assert!(message.contains("square number"), "{message}");
+                assert!(help.is_some());
+            }
+            other => panic!("{other:?}"),
+        }
+        assert!(matches!(
+            RenderJob::prepare(
+                &path.with_file_name("none.toml"),
+                &Overrides::default(),
+                &limits,
+                None
+            ),
+            Err(JobError::Scene(_))
+        ));
+    }
+
+    #[test]
+    fn a_checkpoint_of_other_settings_is_refused_and_its_own_accepted() {
+        let path = scene_file("resume");
+        let limits = Limits::default();
+        let job = RenderJob::prepare(&path, &Overrides::default(), &limits, None).unwrap();
+        let s = &job.scene.settings;
+        let mut c = Checkpoint {
+            fingerprint: job.fingerprint,
+            width: s.width,
+            height: s.height,
+            spp: s.spp,
+            seed: s.seed,
+            scene: path.clone(),
+            output: "s.png".into(),
+            tiles: Default::default(),
+        };
+        assert!(RenderJob::prepare(&path, &Overrides::default(), &limits, Some(&c)).is_ok());
+        c.fingerprint ^= 1;
+        assert!(matches!(
+            RenderJob::prepare(&path, &Overrides::default(), &limits, Some(&c)),
+            Err(JobError::Settings { .. })
+        ));
+        assert_eq!(
+            RenderJob::default_output(Path::new("a/cap.day.toml")),
+            Path::new("cap.day.png")
+        );
+    }
+}
