@@ -6,6 +6,22 @@ use snell::scene::Limits;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
+/// The image flags `render` and `explain` share; each overrides the scene's `[image]`.
+#[derive(Args, Debug)]
+pub(crate) struct ImageArgs {
+    /// Image width in pixels (overrides the scene; `explain`'s pixel coordinates depend on
+    /// it).
+    #[arg(long, allow_negative_numbers = true, value_parser = size, value_name = "W")]
+    pub(crate) width: Option<u32>,
+    /// Image height in pixels (overrides the scene).
+    #[arg(long, allow_negative_numbers = true, value_parser = size, value_name = "H")]
+    pub(crate) height: Option<u32>,
+    /// Samples per pixel, a square number: 1, 4, 9, 16 ... (n x n stratified, jittered;
+    /// `explain --sample` counts up to it).
+    #[arg(long, allow_negative_numbers = true, value_parser = size, value_name = "N")]
+    pub(crate) spp: Option<u32>,
+}
+
 #[derive(Args, Debug)]
 pub(crate) struct RenderArgs {
     /// The scene file (.toml or .json); with --resume, the checkpoint names it.
@@ -15,15 +31,8 @@ pub(crate) struct RenderArgs {
     /// in the current folder].
     #[arg(short, long, value_name = "OUT")]
     pub(crate) output: Option<PathBuf>,
-    /// Image width in pixels (overrides the scene).
-    #[arg(long, allow_negative_numbers = true, value_parser = size, value_name = "W")]
-    pub(crate) width: Option<u32>,
-    /// Image height in pixels (overrides the scene).
-    #[arg(long, allow_negative_numbers = true, value_parser = size, value_name = "H")]
-    pub(crate) height: Option<u32>,
-    /// Samples per pixel, a square number: 1, 4, 9, 16 ... (n x n stratified, jittered).
-    #[arg(long, allow_negative_numbers = true, value_parser = size, value_name = "N")]
-    pub(crate) spp: Option<u32>,
+    #[command(flatten)]
+    pub(crate) image: ImageArgs,
     /// Render threads [default: every core]. The image is the same at any count.
     #[arg(long, value_name = "N", allow_negative_numbers = true, value_parser = positive::<u16>)]
     pub(crate) threads: Option<u16>,
@@ -83,15 +92,8 @@ pub(crate) struct ExplainArgs {
     /// the ray through the pixel's centre].
     #[arg(long, allow_negative_numbers = true, value_parser = whole::<u32>, value_name = "K")]
     pub(crate) sample: Option<u32>,
-    /// Image width in pixels (overrides the scene; pixel coordinates depend on it).
-    #[arg(long, allow_negative_numbers = true, value_parser = size, value_name = "W")]
-    pub(crate) width: Option<u32>,
-    /// Image height in pixels (overrides the scene).
-    #[arg(long, allow_negative_numbers = true, value_parser = size, value_name = "H")]
-    pub(crate) height: Option<u32>,
-    /// Samples per pixel (overrides the scene; `--sample` counts up to it).
-    #[arg(long, allow_negative_numbers = true, value_parser = size, value_name = "N")]
-    pub(crate) spp: Option<u32>,
+    #[command(flatten)]
+    pub(crate) image: ImageArgs,
     /// Print the tree as JSON, for tools.
     #[arg(long)]
     pub(crate) json: bool,

@@ -16,9 +16,9 @@ pub(crate) fn explain(args: ExplainArgs) -> ExitCode {
         Err(code) => return code,
     };
     let s = &mut scene.settings;
-    s.width = args.width.unwrap_or(s.width);
-    s.height = args.height.unwrap_or(s.height);
-    s.spp = args.spp.unwrap_or(s.spp);
+    s.width = args.image.width.unwrap_or(s.width);
+    s.height = args.image.height.unwrap_or(s.height);
+    s.spp = args.image.spp.unwrap_or(s.spp);
     if let Err(code) = check_size_and_spp(s, &limits) {
         return code;
     }

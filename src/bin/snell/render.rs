@@ -67,9 +67,9 @@ pub(crate) fn render(args: RenderArgs) -> ExitCode {
         Err(code) => return code,
     };
     let overrides = Overrides {
-        width: args.width,
-        height: args.height,
-        spp: args.spp,
+        width: args.image.width,
+        height: args.image.height,
+        spp: args.image.spp,
         seed: args.seed,
     };
     let job = match RenderJob::prepare(&scene_path, &overrides, &limits, resumed.as_ref()) {
