@@ -2,11 +2,13 @@
 //! objects (built with the surface area heuristic), plus a list of unbounded ones (infinite
 //! planes) that every ray tests. Meshes and instancing will add levels below the objects.
 
-use crate::geometry::mesh::{MESH_ROOT_FIRST, NodeRay, WideNode};
+pub(crate) mod wide;
+
 use crate::geometry::{Shape, ShapeHit};
 use crate::math::{Aabb, LANES, Ray, RayLanes, Vec3A};
 use crate::scene::Object;
 use glam::Vec4;
+use wide::{MESH_ROOT_FIRST, NodeRay, WideNode};
 
 /// Most objects in one leaf.
 const LEAF_SIZE: usize = 1;

@@ -3,7 +3,6 @@
 //! starts inside a solid finds its far side, and accepts rays whose direction is not unit
 //! length (rays carried in by a transform).
 
-mod collapse;
 mod cone;
 mod cuboid;
 mod cylinder;

@@ -13,7 +13,7 @@
 //!
 //! [`TriangleBlock`]: super::triangle::TriangleBlock
 
-use super::mesh::{LEAF, WideNode};
+use super::{LEAF, WideNode};
 use crate::math::{Aabb, Vec3A};
 use obvhs::bvh2::Bvh2;
 
