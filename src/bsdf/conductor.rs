@@ -3,7 +3,7 @@
 //! on the side light arrives from: the surface is taken two-sided by mirroring `z`.
 
 use super::microfacet::Ggx;
-use super::{BsdfSample, Lobe, fresnel, same_hemisphere};
+use super::{BsdfSample, Lobe, fresnel, front, same_hemisphere, to_side_of};
 use crate::math::{Color, Vec2, Vec3A};
 
 /// How much a conductor reflects at each angle.
@@ -38,11 +38,6 @@ pub struct Conductor {
     pub distribution: Ggx,
 }
 
-/// `w` on the front side: the conductor's lobe is the same on either side.
-fn front(w: Vec3A) -> Vec3A {
-    Vec3A::new(w.x, w.y, w.z.abs())
-}
-
 impl Conductor {
     /// The rough lobe's value (0 for a smooth conductor, whose lobe is a delta).
     pub fn f(&self, wo: Vec3A, wi: Vec3A) -> Color {
@@ -50,12 +45,10 @@ impl Conductor {
             return Color::ZERO;
         }
         let (wo, wi) = (front(wo), front(wi));
-        let wm = (wo + wi).normalize_or_zero();
-        if wm == Vec3A::ZERO {
-            return Color::ZERO;
+        match self.distribution.reflection(wo, wi) {
+            Some(r) => self.fresnel.at(wo.dot(r.wm).abs()) * r.value,
+            None => Color::ZERO,
         }
-        let g = &self.distribution;
-        self.fresnel.at(wo.dot(wm).abs()) * (g.d(wm) * g.g(wo, wi) / (4.0 * wo.z * wi.z))
     }
 
     /// The mirror direction (smooth), or the reflection of `wo` about a visible microfacet
@@ -64,7 +57,6 @@ impl Conductor {
         if wo.z == 0.0 {
             return None;
         }
-        let side = wo.z.signum();
         let fo = front(wo);
         if self.distribution.is_smooth() {
             let wi = Vec3A::new(-wo.x, -wo.y, wo.z);
@@ -75,13 +67,8 @@ impl Conductor {
                 lobe: Lobe::SpecularReflection,
             });
         }
-        let wm = self.distribution.sample_visible(fo, u);
-        let wi = 2.0 * fo.dot(wm) * wm - fo;
-        if wi.z <= 0.0 {
-            return None;
-        }
-        let pdf = self.distribution.visible_pdf(fo, wm) / (4.0 * fo.dot(wm).abs());
-        let wi = Vec3A::new(wi.x, wi.y, wi.z * side);
+        let wi = to_side_of(wo, self.distribution.sample_reflection(fo, u)?);
+        let pdf = self.pdf(wo, wi);
         (pdf > 0.0).then(|| BsdfSample {
             wi,
             f: self.f(wo, wi),
@@ -95,12 +82,9 @@ impl Conductor {
         if self.distribution.is_smooth() || !same_hemisphere(wo, wi) {
             return 0.0;
         }
-        let (wo, wi) = (front(wo), front(wi));
-        let wm = (wo + wi).normalize_or_zero();
-        if wm == Vec3A::ZERO {
-            return 0.0;
-        }
-        self.distribution.visible_pdf(wo, wm) / (4.0 * wo.dot(wm).abs())
+        self.distribution
+            .reflection(front(wo), front(wi))
+            .map_or(0.0, |r| r.pdf)
     }
 }
 

@@ -1,7 +1,7 @@
 //! Lambertian diffuse reflection: light scattered equally in every direction of the side it
 //! arrived on, `f = R / pi`.
 
-use super::{BsdfSample, Lobe, same_hemisphere};
+use super::{BsdfSample, Lobe, same_hemisphere, to_side_of};
 use crate::math::sampling::{cosine_hemisphere, cosine_hemisphere_pdf};
 use crate::math::{Color, Vec2, Vec3A};
 use std::f32::consts::FRAC_1_PI;
@@ -28,10 +28,7 @@ impl Lambert {
         if wo.z == 0.0 {
             return None;
         }
-        let mut wi = cosine_hemisphere(u);
-        if wo.z < 0.0 {
-            wi.z = -wi.z;
-        }
+        let wi = to_side_of(wo, cosine_hemisphere(u));
         let pdf = cosine_hemisphere_pdf(wi.z.abs());
         (pdf > 0.0).then(|| BsdfSample {
             wi,

@@ -107,6 +107,37 @@ impl Ggx {
     }
 }
 
+/// A reflection off the microfacets between two directions on the front side (`z > 0`): the
+/// microfacet normal that joins them, the lobe's value `D G / (4 cos_o cos_i)` (the
+/// Fresnel factor left to the caller, at `wo . wm`), and the density with which
+/// [`Ggx::sample_reflection`] picks `wi`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Reflection {
+    pub wm: Vec3A,
+    pub value: f32,
+    pub pdf: f32,
+}
+
+impl Ggx {
+    /// The reflection lobe between front-side `wo` and `wi`; `None` where they are opposite.
+    pub(crate) fn reflection(&self, wo: Vec3A, wi: Vec3A) -> Option<Reflection> {
+        let wm = (wo + wi).normalize_or_zero();
+        (wm != Vec3A::ZERO).then(|| Reflection {
+            wm,
+            value: self.d(wm) * self.g(wo, wi) / (4.0 * wo.z * wi.z),
+            pdf: self.visible_pdf(wo, wm) / (4.0 * wo.dot(wm).abs()),
+        })
+    }
+
+    /// Front-side `wo` reflected about a microfacet normal visible from it; `None` when the
+    /// reflection goes below the surface.
+    pub(crate) fn sample_reflection(&self, wo: Vec3A, u: Vec2) -> Option<Vec3A> {
+        let wm = self.sample_visible(wo, u);
+        let wi = 2.0 * wo.dot(wm) * wm - wo;
+        (wi.z > 0.0).then_some(wi)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -113,6 +113,19 @@ impl Bsdf {
     }
 }
 
+/// `w` mirrored onto the front side (`z >= 0`), for lobes that are the same on either side
+/// and are written for the front.
+#[inline]
+pub(crate) fn front(w: Vec3A) -> Vec3A {
+    Vec3A::new(w.x, w.y, w.z.abs())
+}
+
+/// A front-side direction `w` carried to the side of `wo`.
+#[inline]
+pub(crate) fn to_side_of(wo: Vec3A, w: Vec3A) -> Vec3A {
+    Vec3A::new(w.x, w.y, w.z.copysign(wo.z))
+}
+
 /// Whether two local directions lie on the same side of the surface.
 #[inline]
 pub(crate) fn same_hemisphere(a: Vec3A, b: Vec3A) -> bool {

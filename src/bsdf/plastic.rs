@@ -7,7 +7,7 @@
 
 use super::dielectric::fresnel;
 use super::microfacet::Ggx;
-use super::{BsdfSample, Lobe, same_hemisphere};
+use super::{BsdfSample, Lobe, front, same_hemisphere, to_side_of};
 use crate::math::sampling::{cosine_hemisphere, cosine_hemisphere_pdf};
 use crate::math::{Color, Vec2, Vec3A};
 
@@ -37,10 +37,6 @@ pub struct Plastic {
     pub distribution: Ggx,
 }
 
-fn front(w: Vec3A) -> Vec3A {
-    Vec3A::new(w.x, w.y, w.z.abs())
-}
-
 impl Plastic {
     /// The probability of sampling the coat's reflection at `cos_o` (the rest goes to the
     /// base), weighted by how bright each is.
@@ -58,16 +54,16 @@ impl Plastic {
                 / (std::f32::consts::PI * self.eta * self.eta * (1.0 - self.fdr_int)))
     }
 
+    /// The rough coat's value and density.
     fn coat(&self, wo: Vec3A, wi: Vec3A) -> (Color, f32) {
         let (wo, wi) = (front(wo), front(wi));
-        let wm = (wo + wi).normalize_or_zero();
-        if wm == Vec3A::ZERO {
-            return (Color::ZERO, 0.0);
+        match self.distribution.reflection(wo, wi) {
+            Some(r) => (
+                Color::splat(fresnel(wo.dot(r.wm), self.eta) * r.value),
+                r.pdf,
+            ),
+            None => (Color::ZERO, 0.0),
         }
-        let g = &self.distribution;
-        let f = fresnel(wo.dot(wm), self.eta) * g.d(wm) * g.g(wo, wi) / (4.0 * wo.z * wi.z);
-        let pdf = g.visible_pdf(wo, wm) / (4.0 * wo.dot(wm).abs());
-        (Color::splat(f), pdf)
     }
 
     /// The base's lobe, and the rough coat's (a smooth coat's reflection is a delta).
@@ -89,7 +85,6 @@ impl Plastic {
             return None;
         }
         let p_coat = self.coat_probability(wo.z);
-        let side = wo.z.signum();
         if uc < p_coat {
             if self.distribution.is_smooth() {
                 let wi = Vec3A::new(-wo.x, -wo.y, wo.z);
@@ -100,13 +95,7 @@ impl Plastic {
                     lobe: Lobe::SpecularReflection,
                 });
             }
-            let fo = front(wo);
-            let wm = self.distribution.sample_visible(fo, u);
-            let wi = 2.0 * fo.dot(wm) * wm - fo;
-            if wi.z <= 0.0 {
-                return None;
-            }
-            let wi = Vec3A::new(wi.x, wi.y, wi.z * side);
+            let wi = to_side_of(wo, self.distribution.sample_reflection(front(wo), u)?);
             let pdf = self.pdf(wo, wi);
             return (pdf > 0.0).then(|| BsdfSample {
                 wi,
@@ -115,8 +104,7 @@ impl Plastic {
                 lobe: Lobe::GlossyReflection,
             });
         }
-        let mut wi = cosine_hemisphere(u);
-        wi.z *= side;
+        let wi = to_side_of(wo, cosine_hemisphere(u));
         let pdf = self.pdf(wo, wi);
         (pdf > 0.0).then(|| BsdfSample {
             wi,

@@ -38,10 +38,8 @@ pub fn cosine_hemisphere_pdf(cos_theta: f32) -> f32 {
 
 /// A direction on the whole unit sphere, every one equally likely: density `1 / (4 pi)`.
 pub fn uniform_sphere(u: Vec2) -> Vec3A {
-    let z = 1.0 - 2.0 * u.x;
-    let r = (1.0 - z * z).max(0.0).sqrt();
-    let phi = 2.0 * PI * u.y;
-    Vec3A::new(r * phi.cos(), r * phi.sin(), z)
+    // The cone that reaches all the way round.
+    uniform_cone(u, -1.0)
 }
 
 /// The density of [`uniform_sphere`] per unit solid angle.
