@@ -147,7 +147,7 @@ impl Builder<'_> {
         palette: &mut Palette,
     ) -> Option<LoadedMesh> {
         let start = Instant::now();
-        let data = match mesh_file::load(full) {
+        let mut data = match mesh_file::load(full) {
             Ok(d) => d,
             Err(e) => {
                 self.error_help(
@@ -163,7 +163,7 @@ impl Builder<'_> {
             self.warnings.push(format!("{file}: {w}"));
         }
         let loader_notes = data.warnings.join("; ");
-        let unread_mtl = data.unread_mtl.clone();
+        let unread_mtl = std::mem::take(&mut data.unread_mtl);
         let (input, materials) = match data.into_mesh_input(smooth) {
             Ok(converted) => converted,
             Err(MeshInputError::TooManyMaterials(n)) => {
