@@ -21,6 +21,16 @@ pub struct Overrides {
     pub seed: Option<u64>,
 }
 
+impl Overrides {
+    /// Replaces the settings given here.
+    pub fn apply(&self, s: &mut RenderSettings) {
+        s.width = self.width.unwrap_or(s.width);
+        s.height = self.height.unwrap_or(s.height);
+        s.spp = self.spp.unwrap_or(s.spp);
+        s.seed = self.seed.unwrap_or(s.seed);
+    }
+}
+
 /// Why a job cannot start.
 #[derive(Debug)]
 pub enum JobError {
@@ -87,10 +97,7 @@ impl RenderJob {
         if let Some(c) = resumed {
             (s.width, s.height, s.spp, s.seed) = (c.width, c.height, c.spp, c.seed);
         }
-        s.width = overrides.width.unwrap_or(s.width);
-        s.height = overrides.height.unwrap_or(s.height);
-        s.spp = overrides.spp.unwrap_or(s.spp);
-        s.seed = overrides.seed.unwrap_or(s.seed);
+        overrides.apply(s);
         check_settings(s, limits)?;
         if let Some(available) = available_memory()
             && let Err(e) = memory_estimate(&scene).check(available)

@@ -16,9 +16,13 @@ pub(crate) fn explain(args: ExplainArgs) -> ExitCode {
         Err(code) => return code,
     };
     let s = &mut scene.settings;
-    s.width = args.image.width.unwrap_or(s.width);
-    s.height = args.image.height.unwrap_or(s.height);
-    s.spp = args.image.spp.unwrap_or(s.spp);
+    snell::job::Overrides {
+        width: args.image.width,
+        height: args.image.height,
+        spp: args.image.spp,
+        seed: None,
+    }
+    .apply(s);
     if let Err(code) = check_size_and_spp(s, &limits) {
         return code;
     }
