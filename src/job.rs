@@ -9,7 +9,7 @@ use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
 /// Values that replace the scene's `[image]` settings.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Overrides {
     /// Image width in pixels.
     pub width: Option<u32>,
@@ -19,6 +19,12 @@ pub struct Overrides {
     pub spp: Option<u32>,
     /// Sample seed.
     pub seed: Option<u64>,
+    /// The integrator (`--integrator`).
+    pub integrator: Option<crate::scene::IntegratorKind>,
+    /// The path tracer's sampler (`--sampler`).
+    pub sampler: Option<crate::sampler::SamplerKind>,
+    /// The path tracer's clamp (`--clamp`).
+    pub clamp: Option<f32>,
 }
 
 impl Overrides {
@@ -28,6 +34,10 @@ impl Overrides {
         s.height = self.height.unwrap_or(s.height);
         s.spp = self.spp.unwrap_or(s.spp);
         s.seed = self.seed.unwrap_or(s.seed);
+        let i = &mut s.integrator;
+        i.kind = self.integrator.unwrap_or(i.kind);
+        i.sampler = self.sampler.unwrap_or(i.sampler);
+        i.clamp = self.clamp.or(i.clamp);
     }
 }
 
@@ -73,7 +83,10 @@ pub fn check_settings(s: &RenderSettings, limits: &Limits) -> Result<(), JobErro
         RenderSettings::check_side(what, v).map_err(|e| settings_error(e, None))?;
     }
     limits
-        .check_spp(s.spp)
+        .check_spp(
+            s.spp,
+            s.integrator.kind == crate::scene::IntegratorKind::Whitted,
+        )
         .map_err(|(e, help)| settings_error(e, help))?;
     limits
         .check_pixels(s.width, s.height)
@@ -109,7 +122,20 @@ impl RenderJob {
         }
         let bytes = std::fs::read(scene_path).unwrap_or_default();
         let s = &scene.settings;
-        let fingerprint = fingerprint(&bytes, s.width, s.height, s.spp, s.seed);
+        // The integrator's settings change the picture as the seed does.
+        let i = &s.integrator;
+        let settings_hash = crate::math::hash_seed(&[
+            s.seed,
+            i.kind as u64,
+            i.sampler as u64,
+            i.clamp.map_or(0, |c| c.to_bits() as u64 + 1),
+        ]);
+        let seed_and_integrator = if *i == crate::scene::IntegratorSettings::default() {
+            s.seed
+        } else {
+            settings_hash
+        };
+        let fingerprint = fingerprint(&bytes, s.width, s.height, s.spp, seed_and_integrator);
         if let Some(c) = resumed
             && c.fingerprint != fingerprint
         {

@@ -36,6 +36,9 @@ pub struct Conductor {
     pub fresnel: ConductorFresnel,
     /// The microfacet distribution; smooth when [`Ggx::is_smooth`].
     pub distribution: Ggx,
+    /// A colour the reflection is multiplied by, each channel in `[0, 1]` (Mitsuba's
+    /// `specular_reflectance`).
+    pub tint: Color,
 }
 
 impl Conductor {
@@ -46,7 +49,7 @@ impl Conductor {
         }
         let (wo, wi) = (front(wo), front(wi));
         match self.distribution.reflection(wo, wi) {
-            Some(r) => self.fresnel.at(wo.dot(r.wm).abs()) * r.value,
+            Some(r) => self.fresnel.at(wo.dot(r.wm).abs()) * self.tint * r.value,
             None => Color::ZERO,
         }
     }
@@ -62,7 +65,7 @@ impl Conductor {
             let wi = Vec3A::new(-wo.x, -wo.y, wo.z);
             return Some(BsdfSample {
                 wi,
-                f: self.fresnel.at(fo.z) / fo.z,
+                f: self.fresnel.at(fo.z) * self.tint / fo.z,
                 pdf: 1.0,
                 lobe: Lobe::SpecularReflection,
             });
@@ -100,6 +103,7 @@ mod tests {
                 k: Color::new(3.983, 2.385, 1.603),
             },
             distribution: Ggx::isotropic(alpha),
+            tint: Color::ONE,
         })
     }
 
@@ -130,6 +134,7 @@ mod tests {
             let b = Bsdf::Conductor(Conductor {
                 fresnel: ConductorFresnel::One,
                 distribution: Ggx::isotropic(alpha),
+                tint: Color::ONE,
             });
             let a = harness::albedo(&b, Vec3A::Z).x;
             assert!(

@@ -10,12 +10,14 @@ pub mod fresnel;
 mod lambert;
 pub mod metals;
 pub mod microfacet;
+mod phong;
 mod plastic;
 mod thin_dielectric;
 
 pub use conductor::{Conductor, ConductorFresnel};
 pub use dielectric::Dielectric;
 pub use lambert::Lambert;
+pub use phong::{PhongBase, PhongMix};
 pub use plastic::{Plastic, internal_diffuse_reflectance};
 pub use thin_dielectric::ThinDielectric;
 
@@ -74,6 +76,8 @@ pub enum Bsdf {
     ThinDielectric(ThinDielectric),
     /// A diffuse base under a dielectric coat.
     Plastic(Plastic),
+    /// A Phong material's mix of base, mirror and glass.
+    Phong(PhongMix),
 }
 
 impl Bsdf {
@@ -85,6 +89,7 @@ impl Bsdf {
             Bsdf::Dielectric(b) => b.f(wo, wi),
             Bsdf::ThinDielectric(b) => b.f(wo, wi),
             Bsdf::Plastic(b) => b.f(wo, wi),
+            Bsdf::Phong(b) => b.f(wo, wi),
         }
     }
 
@@ -97,6 +102,7 @@ impl Bsdf {
             Bsdf::Dielectric(b) => b.sample(wo, u, uc),
             Bsdf::ThinDielectric(b) => b.sample(wo, u, uc),
             Bsdf::Plastic(b) => b.sample(wo, u, uc),
+            Bsdf::Phong(b) => b.sample(wo, u, uc),
         }
     }
 
@@ -109,6 +115,32 @@ impl Bsdf {
             Bsdf::Dielectric(b) => b.pdf(wo, wi),
             Bsdf::ThinDielectric(b) => b.pdf(wo, wi),
             Bsdf::Plastic(b) => b.pdf(wo, wi),
+            Bsdf::Phong(b) => b.pdf(wo, wi),
+        }
+    }
+}
+
+impl Bsdf {
+    /// Whether some of its scattering is not a delta, so that light sampling can reach it.
+    pub fn has_non_delta(&self) -> bool {
+        match self {
+            Bsdf::Lambert(_) | Bsdf::Plastic(_) => true,
+            Bsdf::Conductor(b) => !b.distribution.is_smooth(),
+            Bsdf::Dielectric(b) => !b.distribution.is_smooth() && b.eta != 1.0,
+            Bsdf::ThinDielectric(_) => false,
+            Bsdf::Phong(b) => b.weights[0] > 0.0,
+        }
+    }
+
+    /// How much a sample from `wo` to `wi` concentrates radiance by refraction, `(eta_i /
+    /// eta_o)^2` for a refraction into a denser medium (1 for everything else): Russian
+    /// roulette divides the throughput by it, so that light inside glass is not cut short
+    /// for being bright.
+    pub fn radiance_scale(&self, wo: Vec3A, wi: Vec3A) -> f32 {
+        match self {
+            Bsdf::Dielectric(b) => b.radiance_scale(wo, wi),
+            Bsdf::Phong(b) if b.weights[2] > 0.0 => b.glass.radiance_scale(wo, wi),
+            _ => 1.0,
         }
     }
 }

@@ -118,6 +118,11 @@ fn cross_as_glam(a: [f32; 3], b: [f32; 3]) -> [f32; 3] {
 }
 
 impl Rect {
+    /// The corner and the two edges it was made from.
+    pub fn corner_and_edges(&self) -> (Vec3A, Vec3A, Vec3A) {
+        (self.corner, self.edge_u, self.edge_v)
+    }
+
     /// The parallelogram's area.
     pub fn area(&self) -> f32 {
         self.edge_u.cross(self.edge_v).length()

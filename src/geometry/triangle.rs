@@ -499,6 +499,11 @@ impl Triangle {
 }
 
 impl Triangle {
+    /// The first corner and the edges from it to the second and the third.
+    pub fn corner_and_edges(&self) -> (Vec3A, Vec3A, Vec3A) {
+        (self.a, self.e1, self.e2)
+    }
+
     /// The triangle's area.
     pub fn area(&self) -> f32 {
         0.5 * self.e1.cross(self.e2).length()

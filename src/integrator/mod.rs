@@ -3,12 +3,23 @@
 
 pub mod aov;
 pub mod explain;
+mod path;
 mod whitted;
 
+pub use path::Path;
 pub use whitted::Whitted;
 
 use crate::math::{Color, Ray};
-use crate::scene::Scene;
+use crate::sampler::Sampler;
+use crate::scene::{IntegratorKind, Scene};
+
+/// The integrator a scene's settings choose.
+pub fn chosen(kind: IntegratorKind) -> &'static dyn Integrator {
+    match kind {
+        IntegratorKind::Whitted => &Whitted,
+        IntegratorKind::Path => &Path,
+    }
+}
 
 /// Computes the colour seen along a camera ray.
 pub trait Integrator: Sync {
@@ -23,6 +34,51 @@ pub trait Integrator: Sync {
         for (ray, o) in batch.iter().zip(out) {
             *o = self.radiance(scene, ray, rays);
         }
+    }
+
+    /// Whether each sample draws its random numbers from a [`Sampler`] (through
+    /// [`Integrator::radiance_sampled`]): then a pixel's samples are placed by the sampler
+    /// too, and any number of them is allowed. Whitted's are stratified jitter.
+    fn uses_sampler(&self) -> bool {
+        false
+    }
+
+    /// The colour seen along a camera ray with random numbers from `sampler`, started at
+    /// this sample (whose first two numbers placed the ray on the film).
+    fn radiance_sampled(
+        &self,
+        scene: &Scene,
+        ray: &Ray,
+        sampler: &mut Sampler,
+        rays: &mut RayStats,
+    ) -> Color {
+        let _ = sampler;
+        self.radiance(scene, ray, rays)
+    }
+}
+
+impl Integrator for Path {
+    /// One path, with numbers from sample 0 of pixel (0, 0) of the render's sampler (for
+    /// tools that give a ray but no sample).
+    fn radiance(&self, scene: &Scene, ray: &Ray, rays: &mut RayStats) -> Color {
+        let s = &scene.settings;
+        let mut sampler = Sampler::new(s.integrator.sampler, s.seed);
+        sampler.start(0, 0, 0);
+        Path::radiance(self, scene, ray, &mut sampler, rays)
+    }
+
+    fn uses_sampler(&self) -> bool {
+        true
+    }
+
+    fn radiance_sampled(
+        &self,
+        scene: &Scene,
+        ray: &Ray,
+        sampler: &mut Sampler,
+        rays: &mut RayStats,
+    ) -> Color {
+        Path::radiance(self, scene, ray, sampler, rays)
     }
 }
 

@@ -244,6 +244,13 @@ impl Whitted {
         if R::ACTIVE {
             rec.ambient(out);
         }
+        if let Some(e) = &m.emission {
+            let emitted = e.emitted(entering);
+            out += emitted;
+            if R::ACTIVE && emitted != Color::ZERO {
+                rec.note(format!("emits {:?}", emitted.to_array()));
+            }
+        }
         let view = -d;
         for (index, light) in scene.lights.iter().enumerate() {
             let Some(ls) = light.sample(above) else {
@@ -323,12 +330,13 @@ impl Whitted {
             }
             return out;
         }
-        let mut reflect_weight = (1.0 - t) * m.reflectivity;
+        // The mirror's share in its tint (white but for metals), glass's by Fresnel.
+        let mut reflect_weight = Color::splat((1.0 - t) * m.reflectivity) * m.mirror_tint;
         if t > 0.0 {
             let eta = if entering { 1.0 / m.ior } else { m.ior };
             let cos_i = view.dot(ns);
             let fresnel = fresnel_dielectric(cos_i, eta);
-            reflect_weight += t * fresnel;
+            reflect_weight += Color::splat(t * fresnel);
             // A shading normal can bend a ray back out of the surface; the true normal
             // cannot.
             let refracted = refract(d, ns, eta)
@@ -369,7 +377,7 @@ impl Whitted {
                 out += self.trace_from(scene, &Ray::new(below, dir), &child, rays, rec) * weight;
             }
         }
-        if reflect_weight > 0.0 {
+        if reflect_weight.max_element() > 0.0 {
             // Unit already (see `reflect`): normalising it took 1.4 % of the seed scene's time.
             let mut dir = reflect(d, ns);
             if dir.dot(n) <= 0.0 {
@@ -381,7 +389,7 @@ impl Whitted {
                 from: hit.point,
                 depth: seg.depth + 1,
                 medium: seg.medium,
-                weight: Color::splat(reflect_weight),
+                weight: reflect_weight,
                 skip: skip_above,
             };
             out += self.trace_from(scene, &r, &child, rays, rec) * reflect_weight;

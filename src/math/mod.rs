@@ -22,6 +22,12 @@ pub use transform::Transform;
 /// Linear RGB colour (not sRGB encoded), one `f32` per channel.
 pub type Color = Vec3A;
 
+/// The luminance of a linear RGB colour (Rec. 709 primaries, as sRGB).
+#[inline]
+pub fn luminance(c: Color) -> f32 {
+    0.2126 * c.x + 0.7152 * c.y + 0.0722 * c.z
+}
+
 /// A half-line `origin + t * dir`. World-space rays carry a unit `dir`; rays carried into an
 /// object's space by a transform may not, and every intersection routine accepts that.
 #[derive(Clone, Copy, Debug, PartialEq)]

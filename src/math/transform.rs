@@ -64,6 +64,12 @@ impl Transform {
         self.to_object.transform_point3a(p)
     }
 
+    /// Object-space direction to world space (not renormalised).
+    #[inline]
+    pub fn vector_to_world(&self, d: Vec3A) -> Vec3A {
+        self.to_world.transform_vector3a(d)
+    }
+
     /// World-space direction to object space.
     #[inline]
     pub fn vector_to_object(&self, d: Vec3A) -> Vec3A {

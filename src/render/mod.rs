@@ -4,6 +4,7 @@
 use crate::film::Image;
 use crate::integrator::{Integrator, RayStats};
 use crate::math::{Color, Ray, Rng, Vec3A, hash_seed};
+use crate::sampler::Sampler;
 use crate::scene::{RenderSettings, Scene};
 use rayon::prelude::*;
 use std::collections::BTreeMap;
@@ -361,6 +362,9 @@ pub fn render_pixel(
     rays: &mut RayStats,
     bad: &mut BadSamples,
 ) -> Color {
+    if integrator.uses_sampler() {
+        return render_pixel_sampled(scene, integrator, x, y, rays, bad);
+    }
     let s = &scene.settings;
     let (mut sum, mut weight, mut unsigned) = (Color::ZERO, 0.0f32, Color::ZERO);
     let camera = scene.camera.raster(s.width, s.height);
@@ -372,21 +376,7 @@ pub fn render_pixel(
         // they stay in registers across the loop.
         let (mut s, mut w, mut u) = (sum, weight, unsigned);
         for ((ray, sign), &c) in batch.iter().zip(signs).zip(colors.iter()) {
-            // A non-finite sample would poison the whole pixel: leave it out, and say where.
-            let c = if c.is_finite() {
-                c
-            } else {
-                bad.count += 1;
-                if bad.examples.len() < BadSamples::EXAMPLES {
-                    bad.examples.push(BadSample {
-                        x,
-                        y,
-                        object: scene.closest_hit(ray, f32::INFINITY).map(|h| h.object),
-                        nan: c.is_nan(),
-                    });
-                }
-                Color::ZERO
-            };
+            let c = checked(scene, c, ray, x, y, bad);
             s += c * *sign;
             w += sign;
             u += c;
@@ -425,6 +415,65 @@ pub fn render_pixel(
         (sum / weight).max(Color::ZERO)
     } else {
         // Only possible when most samples fall in Mitchell's negative lobes.
+        unsigned / s.spp as f32
+    }
+}
+
+/// `c`, or black where it is NaN or infinite: a non-finite sample would poison the whole
+/// pixel, so it is left out, counted and its place kept as an example.
+#[inline]
+fn checked(scene: &Scene, c: Color, ray: &Ray, x: u32, y: u32, bad: &mut BadSamples) -> Color {
+    if c.is_finite() {
+        return c;
+    }
+    bad.count += 1;
+    if bad.examples.len() < BadSamples::EXAMPLES {
+        bad.examples.push(BadSample {
+            x,
+            y,
+            object: scene.closest_hit(ray, f32::INFINITY).map(|h| h.object),
+            nan: c.is_nan(),
+        });
+    }
+    Color::ZERO
+}
+
+/// A pixel of an integrator that takes its numbers from a [`Sampler`]: any number of
+/// samples, each placed on the film by its sampler's first two numbers through the filter's
+/// distribution, averaged with the signs of their filter weights.
+fn render_pixel_sampled(
+    scene: &Scene,
+    integrator: &dyn Integrator,
+    x: u32,
+    y: u32,
+    rays: &mut RayStats,
+    bad: &mut BadSamples,
+) -> Color {
+    let s = &scene.settings;
+    let camera = scene.camera.raster(s.width, s.height);
+    let mut sampler = Sampler::new(s.integrator.sampler, s.seed);
+    let (cx, cy) = (x as f32 + 0.5, y as f32 + 0.5);
+    let signed = s.filter.has_negative_lobes();
+    let (mut sum, mut weight, mut unsigned) = (Color::ZERO, 0.0f32, Color::ZERO);
+    for index in 0..s.spp {
+        sampler.start(x, y, index);
+        let u = sampler.next_2d();
+        let (dx, dy) = (s.filter.offset_in_unit(u.x), s.filter.offset_in_unit(u.y));
+        let sign = if signed {
+            s.filter.sign_at(dx) * s.filter.sign_at(dy)
+        } else {
+            1.0
+        };
+        let ray = camera.ray(cx + dx, cy + dy);
+        let c = integrator.radiance_sampled(scene, &ray, &mut sampler, rays);
+        let c = checked(scene, c, &ray, x, y, bad);
+        sum += c * sign;
+        weight += sign;
+        unsigned += c;
+    }
+    if weight > 0.0 {
+        (sum / weight).max(Color::ZERO)
+    } else {
         unsigned / s.spp as f32
     }
 }
@@ -488,6 +537,7 @@ mod tests {
                     max_depth: 5,
                     seed: 3,
                     filter: Filter::new(kind, None),
+                    integrator: Default::default(),
                 };
                 for (x, y) in [(0, 0), (17, 5), (63, 40)] {
                     let mut got = vec![];

@@ -275,25 +275,31 @@ impl Builder<'_> {
         let highlight = !matches!(illum, 0 | 1);
         let ks = m.ks.map_or(Color::ZERO, rgb);
         let (shininess, highlight_weight) = mtl_highlight(m.ns);
-        Material {
-            texture: textures.len() - 1,
-            ambient: 1.0,
-            diffuse: if illum == 0 { 0.0 } else { 1.0 },
-            specular: if highlight {
-                ks * highlight_weight
-            } else {
-                Color::ZERO
-            },
-            shininess,
-            reflectivity: if matches!(illum, 3 | 5) {
-                ks.max_element().clamp(0.0, 1.0)
-            } else {
-                0.0
-            },
-            transparency,
-            ior: m.ni.filter(|n| *n > 0.0 && n.is_finite()).unwrap_or(1.5),
-            absorption: Color::ZERO,
-        }
+        let mut out = Material::base(
+            textures.len() - 1,
+            crate::material::Surface::Phong,
+            m.ke.map(rgb)
+                .filter(|e| e.max_element() > 0.0)
+                .map(|radiance| crate::material::Emission {
+                    radiance,
+                    two_sided: false,
+                }),
+        );
+        out.diffuse = if illum == 0 { 0.0 } else { 1.0 };
+        out.specular = if highlight {
+            ks * highlight_weight
+        } else {
+            Color::ZERO
+        };
+        out.shininess = shininess;
+        out.reflectivity = if matches!(illum, 3 | 5) {
+            ks.max_element().clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        out.transparency = transparency;
+        out.ior = m.ni.filter(|n| *n > 0.0 && n.is_finite()).unwrap_or(1.5);
+        out
     }
 }
 

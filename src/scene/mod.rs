@@ -4,18 +4,20 @@
 mod build;
 mod diag;
 pub mod format;
+mod limits;
 mod meshes;
 
 pub use build::{MAX_MAGNITUDE, load, load_str, load_with};
 pub use diag::{DocPath, Format, Problem, SceneDiagnostic, SceneError, Seg, did_you_mean};
-pub use format::schema;
+pub use format::{IntegratorKind, schema};
+pub use limits::{Limits, MemoryEstimate, available_memory, memory_estimate};
 
 use crate::accel::Bvh;
 pub use crate::accel::Skip;
 use crate::camera::Camera;
 use crate::film::Filter;
 use crate::geometry::{Leaving, Shape, ShapeHit};
-use crate::light::Light;
+use crate::light::{AreaLight, Light, LightSampler};
 use crate::material::Material;
 use crate::math::{Aabb, Color, LANES, Ray, Transform, Vec3A};
 use crate::texture::{Texture, TexturePoint};
@@ -36,6 +38,32 @@ pub struct RenderSettings {
     pub seed: u64,
     /// Reconstruction filter.
     pub filter: Filter,
+    /// The integrator and its settings.
+    pub integrator: IntegratorSettings,
+}
+
+/// Which integrator renders, and the path tracer's settings (`[integrator]`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct IntegratorSettings {
+    /// Whitted or path.
+    pub kind: IntegratorKind,
+    /// The path tracer's sampler.
+    pub sampler: crate::sampler::SamplerKind,
+    /// Depth (segments, the camera ray 1) from which Russian roulette may end a path.
+    pub rr_depth: u32,
+    /// The most a sample may add to a pixel, per channel; `None`: no clamp.
+    pub clamp: Option<f32>,
+}
+
+impl Default for IntegratorSettings {
+    fn default() -> Self {
+        IntegratorSettings {
+            kind: IntegratorKind::Whitted,
+            sampler: crate::sampler::SamplerKind::Sobol,
+            rr_depth: 5,
+            clamp: None,
+        }
+    }
 }
 
 impl RenderSettings {
@@ -53,189 +81,6 @@ impl RenderSettings {
             Ok(())
         }
     }
-}
-
-/// Sane maximums for what a scene and a render may ask for, so a typo (an extra zero) gets a
-/// clear message instead of exhausting the machine. Each can be raised from the command line
-/// (`--max-pixels`, `--max-spp`, `--max-depth`, `--max-texture-pixels`, `--max-triangles`),
-/// up to the hard ceilings in [`Limits::CEILING`].
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Limits {
-    /// Pixels in the image (width x height).
-    pub max_pixels: u64,
-    /// Samples per pixel.
-    pub max_spp: u32,
-    /// Longest chain of rays, the camera ray included.
-    pub max_depth: u32,
-    /// Texels in one image texture (width x height).
-    pub max_texture_pixels: u64,
-    /// Triangles in all the scene's meshes (each mesh counted once, however often placed).
-    pub max_triangles: u64,
-}
-
-impl Default for Limits {
-    fn default() -> Self {
-        Limits {
-            max_pixels: 1 << 28,         // 16384 x 16384: 3 GiB of film
-            max_spp: 65_536,             // 256 x 256
-            max_depth: 64,               // far beyond what a picture shows
-            max_texture_pixels: 1 << 28, // 16384 x 16384: 3 GiB decoded
-            max_triangles: 1 << 28,      // about 20 GiB of meshes and BVHs
-        }
-    }
-}
-
-impl Limits {
-    /// The most any limit may be raised to: what the renderer can represent (a ray tree's
-    /// recursion, `u32` indices), whatever memory the machine has.
-    pub const CEILING: Limits = Limits {
-        max_pixels: 1 << 32,
-        max_spp: 1 << 24,
-        max_depth: 256,
-        max_texture_pixels: 1 << 32,
-        max_triangles: 1 << 32,
-    };
-
-    /// Checks these limits against [`Limits::CEILING`]: the flag and the ceiling when one
-    /// is above it.
-    pub fn check(&self) -> Result<(), String> {
-        let c = Limits::CEILING;
-        for (flag, v, max) in [
-            ("--max-pixels", self.max_pixels, c.max_pixels),
-            ("--max-spp", self.max_spp as u64, c.max_spp as u64),
-            ("--max-depth", self.max_depth as u64, c.max_depth as u64),
-            (
-                "--max-texture-pixels",
-                self.max_texture_pixels,
-                c.max_texture_pixels,
-            ),
-            ("--max-triangles", self.max_triangles, c.max_triangles),
-        ] {
-            if v == 0 || v > max {
-                return Err(format!("{flag} must be between 1 and {max}, not {v}"));
-            }
-        }
-        Ok(())
-    }
-
-    /// Checks a sample count: a square number (n x n strata) within the limit.
-    pub fn check_spp(&self, spp: u32) -> Result<(), (String, Option<String>)> {
-        let n = (spp as f64).sqrt().round() as u32;
-        if spp == 0 || spp > self.max_spp {
-            Err((
-                format!(
-                    "samples per pixel must be between 1 and {}, not {spp}",
-                    self.max_spp
-                ),
-                (spp > self.max_spp).then(|| "raise the limit with --max-spp".to_string()),
-            ))
-        } else if n * n != spp {
-            let lo = ((spp as f64).sqrt().floor() as u32).max(1);
-            Err((
-                format!("samples per pixel must be a square number (n x n stratified), not {spp}"),
-                Some(format!(
-                    "use {} ({lo} x {lo}) or {} ({} x {})",
-                    lo * lo,
-                    (lo + 1) * (lo + 1),
-                    lo + 1,
-                    lo + 1
-                )),
-            ))
-        } else {
-            Ok(())
-        }
-    }
-
-    /// Checks the pixel count, so a huge image is refused instead of exhausting memory.
-    pub fn check_pixels(&self, width: u32, height: u32) -> Result<(), (String, Option<String>)> {
-        let pixels = width as u64 * height as u64;
-        if pixels > self.max_pixels {
-            Err((
-                format!(
-                    "{width} x {height} is {pixels} pixels, more than the {} a render may have; the image alone would need {:.1} GiB",
-                    self.max_pixels,
-                    pixels as f64 * Self::BYTES_PER_PIXEL as f64 / GIB
-                ),
-                Some("make it smaller, or raise the limit with --max-pixels".into()),
-            ))
-        } else {
-            Ok(())
-        }
-    }
-
-    /// Checks the longest ray chain.
-    pub fn check_depth(&self, depth: u32) -> Result<(), (String, Option<String>)> {
-        if depth == 0 || depth > self.max_depth {
-            Err((
-                format!(
-                    "must be between 1 (camera rays only) and {}, not {depth}",
-                    self.max_depth
-                ),
-                (depth > self.max_depth).then(|| "raise the limit with --max-depth".to_string()),
-            ))
-        } else {
-            Ok(())
-        }
-    }
-
-    /// Bytes a render keeps per pixel: the film (three `f32`), the finished tiles (three
-    /// more, kept for checkpoints) and the encoded output.
-    pub const BYTES_PER_PIXEL: u64 = 12 + 12 + 4;
-}
-
-const GIB: f64 = (1u64 << 30) as f64;
-
-/// Memory a render of `scene` at its settings needs, roughly, in bytes: the image (see
-/// [`Limits::BYTES_PER_PIXEL`]), the meshes and BVHs, and the decoded textures.
-pub fn memory_estimate(scene: &Scene) -> MemoryEstimate {
-    let s = &scene.settings;
-    MemoryEstimate {
-        image: s.width as u64 * s.height as u64 * Limits::BYTES_PER_PIXEL,
-        geometry: (scene.stats.bvh_bytes + scene.stats.mesh_bytes) as u64,
-        textures: scene.textures.iter().map(|t| t.bytes() as u64).sum(),
-    }
-}
-
-/// What a render will take in memory, by part.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct MemoryEstimate {
-    /// Film, tiles and output.
-    pub image: u64,
-    /// Meshes and BVHs.
-    pub geometry: u64,
-    /// Decoded image textures.
-    pub textures: u64,
-}
-
-impl MemoryEstimate {
-    /// All of it.
-    pub fn total(&self) -> u64 {
-        self.image + self.geometry + self.textures
-    }
-
-    /// Refuses the render when it would need more than `available` bytes, with the estimate.
-    pub fn check(&self, available: u64) -> Result<(), String> {
-        if self.total() > available {
-            Err(format!(
-                "this render would need about {:.1} GiB (image {:.1} GiB, meshes and BVHs {:.1} GiB, textures {:.1} GiB), but only {:.1} GiB of memory is available",
-                self.total() as f64 / GIB,
-                self.image as f64 / GIB,
-                self.geometry as f64 / GIB,
-                self.textures as f64 / GIB,
-                available as f64 / GIB
-            ))
-        } else {
-            Ok(())
-        }
-    }
-}
-
-/// Memory the system can still give (Linux's `MemAvailable`); `None` where unknown.
-pub fn available_memory() -> Option<u64> {
-    let text = std::fs::read_to_string("/proc/meminfo").ok()?;
-    let line = text.lines().find(|l| l.starts_with("MemAvailable:"))?;
-    let kib: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
-    Some(kib * 1024)
 }
 
 /// Fog over distance travelled outside solids.
@@ -450,8 +295,14 @@ pub struct Scene {
     pub texture_names: BTreeMap<String, usize>,
     /// Names of the materials, by index.
     pub material_names: Vec<String>,
-    /// Light sources.
+    /// Point, spot and directional lights.
     pub lights: Vec<Light>,
+    /// Emitting objects the path tracer samples as lights.
+    pub area_lights: Vec<AreaLight>,
+    /// Per object, the index of its area light, if it is one.
+    pub area_light_of: Vec<Option<u32>>,
+    /// The choice among all lights by power, for the path tracer.
+    pub light_sampler: LightSampler,
     /// Things that are allowed but probably not meant.
     pub warnings: Vec<String>,
     /// What building the scene cost.
@@ -584,6 +435,14 @@ impl Scene {
             })
     }
 
+    /// Whether anything but `skip` blocks the ray in `(0, t_max)`, glass included (the path
+    /// tracer's shadow rays).
+    #[inline]
+    pub fn occluded(&self, ray: &Ray, t_max: f32, skip: Skip) -> bool {
+        self.accel
+            .any_hit(&self.objects, ray, t_max, skip, |_| true)
+    }
+
     /// An opaque object but `skip` that blocks the ray in `(0, t_max)`, if any (the first
     /// found), and whether the ray met the bounds of a transparent object but `skip` (or an
     /// unbounded one) on the way: if not, it crosses no glass but `skip` in `(0, t_max)`.
@@ -680,199 +539,4 @@ impl Scene {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::geometry::test_util::in_unit_cube;
-    use crate::math::Rng;
-    use std::path::Path;
-
-    fn scene(objects: &str) -> Scene {
-        let text = format!("[camera]\nlook_at = [0, 0, -1]\n[materials.m]\ncolor = 1\n{objects}");
-        load_str(&text, Path::new("t.toml"), Path::new("."), Format::Toml).unwrap()
-    }
-
-    fn object(kind: &str, rest: &str) -> String {
-        format!("[[objects]]\ntype = \"{kind}\"\nmaterial = \"m\"\n{rest}\n")
-    }
-
-    /// A ray leaving a surface finds the same hit whether or not its walk leaves out the
-    /// object it leaves (`Scene::leaving`), and the object's own test misses it: for every
-    /// kind of analytic shape, placed as given and mirrored, sheared and turned by
-    /// transforms, in the flat layout and in a tree, for shadow-like and reflected rays
-    /// from the offset origins the renderer uses. Rays leaving solids inward skip nothing.
-    #[test]
-    fn leaving_a_surface_skips_only_what_cannot_be_met() {
-        let shapes = [
-            object("sphere", "center = [0, 0, -10]\nradius = 2"),
-            object("box", "min = [2, -3, -14]\nmax = [4, -1, -12]"),
-            object(
-                "cylinder",
-                "base = [-3, -3, -12]\naxis = [0, 1, 0]\nradius = 1\nheight = 3\ncapped = true",
-            ),
-            object(
-                "cone",
-                "base = [3, 1, -9]\naxis = [0.2, 1, 0]\nradius = 1\nheight = 2\ncapped = false",
-            ),
-            object(
-                "sphere",
-                "radius = 1\ntransform = { scale = [-2, 1, 0.7], rotate = [30, 10, 0], translate = [1, 2, -9] }",
-            ),
-            object(
-                "box",
-                "min = [-1, -1, -1]\nmax = [1, 1, 1]\ntransform = { scale = [1, -0.5, 2], rotate = [0, 45, 20], translate = [-2, 2, -13] }",
-            ),
-            object("disk", "center = [0, 2, -16]\nnormal = [0, 0, 1]\nradius = 2"),
-            object(
-                "rectangle",
-                "corner = [-5, -3, -20]\nedge_u = [10, 0, 0]\nedge_v = [0, 0, 15]",
-            ),
-            object("plane", "point = [0, -3.5, 0]"),
-        ]
-        .concat();
-        let crowd: String = (0..12)
-            .map(|i| {
-                object(
-                    "sphere",
-                    &format!(
-                        "center = [{}, {}, -11]\nradius = 0.9",
-                        i % 4 * 2 - 3,
-                        i / 4 * 2 - 2
-                    ),
-                )
-            })
-            .collect();
-        let mut rng = Rng::new(17);
-        for (scene, name) in [
-            (scene(&shapes), "shapes"),
-            (scene(&(shapes.clone() + &crowd)), "tree"),
-        ] {
-            let (mut skipped, mut inward) = (0, 0);
-            for _ in 0..6000 {
-                let eye = in_unit_cube(&mut rng) * 16.0 + Vec3A::new(0.0, 0.0, -10.0);
-                let to = in_unit_cube(&mut rng) * 6.0 + Vec3A::new(0.0, 0.0, -11.0);
-                let Some(hit) =
-                    scene.closest_hit(&Ray::new(eye, (to - eye).normalize()), f32::INFINITY)
-                else {
-                    continue;
-                };
-                let dir_in = (to - eye).normalize();
-                let outward = dir_in.dot(hit.normal) < 0.0;
-                let n = if outward { hit.normal } else { -hit.normal };
-                // A random direction on the side the ray arrived from.
-                let mut d = (in_unit_cube(&mut rng) * 2.0 - Vec3A::ONE).normalize_or(n);
-                if d.dot(n) < 0.0 {
-                    d = -d;
-                }
-                if d.dot(n) < 1e-3 {
-                    continue;
-                }
-                let ray = Ray::new(crate::math::offset_ray_origin(hit.point, n), d);
-                let skip = scene.leaving(&hit, outward);
-                if skip == Skip::NONE {
-                    inward += 1;
-                } else {
-                    skipped += 1;
-                    assert!(
-                        scene.objects[hit.object]
-                            .intersect(&ray, f32::INFINITY)
-                            .is_none(),
-                        "{name}: {} met again",
-                        scene.objects[hit.object].name
-                    );
-                }
-                let key = |h: Option<Hit>| h.map(|h| (h.object, h.t.to_bits()));
-                assert_eq!(
-                    key(scene.closest_hit_skipping(&ray, f32::INFINITY, skip)),
-                    key(scene.closest_hit(&ray, f32::INFINITY)),
-                    "{name}: {ray:?} leaving {}",
-                    scene.objects[hit.object].name
-                );
-            }
-            assert!(
-                skipped > 1000 && inward > 50,
-                "{name}: {skipped} skipped, {inward} inward"
-            );
-        }
-    }
-
-    /// Hits found a packet at a time are the hits found one ray at a time, to the bit: in a
-    /// scene of every kind of shape (the flat layout, an unbounded plane, a transformed
-    /// sphere), in one of many spheres (the tree) and in one of a lone sphere; for camera
-    /// rays of one pixel and for rays in every direction, in whole and partial packets.
-    #[test]
-    fn packets_find_what_single_rays_find() {
-        let every_kind = [
-            object("sphere", "center = [0, 0, -10]\nradius = 2"),
-            object(
-                "rectangle",
-                "corner = [-5, -3, -20]\nedge_u = [10, 0, 0]\nedge_v = [0, 0, 15]",
-            ),
-            object("box", "min = [2, -3, -14]\nmax = [4, -1, -12]"),
-            object(
-                "cylinder",
-                "base = [-3, -3, -12]\naxis = [0, 1, 0]\nradius = 1\nheight = 3\ncapped = true",
-            ),
-            object(
-                "sphere",
-                "radius = 1\ntransform = { scale = [2, 1, 1], translate = [1, 2, -9] }",
-            ),
-            object(
-                "disk",
-                "center = [0, 2, -16]\nnormal = [0, 0, 1]\nradius = 2",
-            ),
-            object(
-                "triangle",
-                "vertices = [[-4, 0, -8], [-2, 0, -9], [-3, 2, -8.5]]",
-            ),
-            object("plane", "point = [0, -3.5, 0]"),
-        ]
-        .concat();
-        let many: String = (0..20)
-            .map(|i| {
-                object(
-                    "sphere",
-                    &format!(
-                        "center = [{}, {}, -12]\nradius = 0.8",
-                        i % 5 * 2 - 4,
-                        i / 5 * 2 - 3
-                    ),
-                )
-            })
-            .collect();
-        let lone = [
-            object("sphere", "center = [0, 0, -10]\nradius = 2"),
-            object("plane", "point = [0, -3, 0]"),
-        ]
-        .concat();
-        let mut rng = Rng::new(3);
-        for (name, text) in [("every kind", every_kind), ("many", many), ("lone", lone)] {
-            let scene = scene(&text);
-            let mut hits = 0;
-            for round in 0..3000 {
-                let n = [16, 8, 3, 13][round % 4];
-                let camera_like = round % 2 == 0;
-                let center = Vec3A::new(rng.next_f32() - 0.5, rng.next_f32() - 0.5, -1.0);
-                let rays: Vec<Ray> = (0..n)
-                    .map(|_| {
-                        let jitter = Vec3A::new(rng.next_f32() - 0.5, rng.next_f32() - 0.5, 0.0);
-                        if camera_like {
-                            Ray::new(Vec3A::ZERO, (center + jitter * 0.01).normalize())
-                        } else {
-                            let o = in_unit_cube(&mut rng) * 20.0 - Vec3A::new(0.0, 0.0, 15.0);
-                            Ray::new(o, in_unit_cube(&mut rng).normalize())
-                        }
-                    })
-                    .collect();
-                let mut found = vec![None; n];
-                scene.closest_hits(&rays, &mut found);
-                for (ray, got) in rays.iter().zip(&found) {
-                    let want = scene.closest_hit(ray, f32::INFINITY);
-                    // Debug prints every float exactly (the shortest form that reads back).
-                    assert_eq!(format!("{got:?}"), format!("{want:?}"), "{name}: {ray:?}");
-                    hits += want.is_some() as usize;
-                }
-            }
-            assert!(hits > 5000, "{name}: {hits} hits");
-        }
-    }
-}
+mod tests;

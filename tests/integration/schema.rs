@@ -318,6 +318,11 @@ filter = { type = "tent", radius = 1.5 }
 background = 0.2
 max_depth = 8
 seed = 7
+[integrator]
+type = "path"
+sampler = "independent"
+rr_depth = 3
+clamp = 10
 [camera]
 position = [0, 2, 6]
 look_at = [0, 0, 0]
@@ -369,6 +374,34 @@ reflectivity = 0.1
 transparency = 0.2
 ior = 1.33
 absorption = [0.1, 0, 0]
+[materials.gold]
+type = "conductor"
+metal = "Au"
+roughness = 0.2
+color = 1
+[materials.custom_metal]
+type = "conductor"
+eta = [0.2, 0.9, 1.1]
+k = [3.9, 2.4, 2.2]
+roughness = "bands"
+[materials.glass]
+type = "dielectric"
+ior = 1.5
+roughness = 0.1
+absorption = [0.1, 0, 0]
+[materials.pane]
+type = "thin"
+ior = 1.5
+[materials.coat]
+type = "plastic"
+color = [0.8, 0.1, 0.1]
+ior = 1.5
+roughness = 0.05
+[materials.lamp]
+type = "diffuse"
+color = 1
+emission = [4, 4, 4]
+two_sided = true
 [meshes.statue]
 file = "statue.obj"
 smooth = true
@@ -377,6 +410,7 @@ type = "point"
 position = [0, 5, 0]
 color = 1
 intensity = 2
+falloff = "none"
 [[lights]]
 type = "directional"
 direction = [0, -1, 0]
@@ -391,6 +425,7 @@ color = 1
 intensity = 3
 angle = 25
 soft_edge = 4
+falloff = "inverse_square"
 [[objects]]
 type = "sphere"
 name = "ball"
@@ -492,8 +527,16 @@ fn the_every_key_scene_has_every_key_and_type_of_the_schema() {
     scene_words(&scene, &mut used_keys, &mut strings);
     let missing: Vec<_> = keys.iter().filter(|k| !used_keys.contains(k)).collect();
     assert!(missing.is_empty(), "keys not in EVERY_KEY: {missing:?}");
-    // A scene has one filter, one fog mode: the edits try the others in their place.
-    let others = ["gaussian", "mitchell", "exponential"];
+    // A scene has one filter, one fog mode, one integrator and sampler: the edits try the
+    // others in their place.
+    let others = [
+        "gaussian",
+        "mitchell",
+        "exponential",
+        "whitted",
+        "sobol",
+        "phong",
+    ];
     let missing: Vec<_> = consts
         .iter()
         .filter(|c| !strings.contains(c) && !others.iter().any(|o| *c == o))

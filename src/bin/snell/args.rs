@@ -2,7 +2,8 @@
 
 use clap::Args;
 use snell::integrator::aov::Aov;
-use snell::scene::Limits;
+use snell::sampler::SamplerKind;
+use snell::scene::{IntegratorKind, Limits};
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -16,10 +17,61 @@ pub(crate) struct ImageArgs {
     /// Image height in pixels (overrides the scene).
     #[arg(long, allow_negative_numbers = true, value_parser = size, value_name = "H")]
     pub(crate) height: Option<u32>,
-    /// Samples per pixel, a square number: 1, 4, 9, 16 ... (n x n stratified, jittered;
-    /// `explain --sample` counts up to it).
+    /// Samples per pixel: for the Whitted integrator a square number, 1, 4, 9, 16 ... (n x n
+    /// stratified, jittered), for the path tracer any number; `explain --sample` counts up
+    /// to it.
     #[arg(long, allow_negative_numbers = true, value_parser = size, value_name = "N")]
     pub(crate) spp: Option<u32>,
+    /// The integrator, `whitted` or `path` (overrides the scene's `[integrator] type`).
+    #[arg(long, value_name = "NAME", value_parser = parse_integrator)]
+    pub(crate) integrator: Option<IntegratorKind>,
+    /// The path tracer's sampler, `sobol` or `independent` (overrides the scene).
+    #[arg(long, value_name = "NAME", value_parser = parse_sampler)]
+    pub(crate) sampler: Option<SamplerKind>,
+    /// The path tracer's clamp: the most one sample adds to a pixel, per channel (removes
+    /// fireflies, darkens: biased; off unless set here or in the scene).
+    #[arg(long, allow_negative_numbers = true, value_name = "X", value_parser = parse_clamp)]
+    pub(crate) clamp: Option<f32>,
+}
+
+impl ImageArgs {
+    /// The overrides these flags give (and the seed, which only `render` takes).
+    pub(crate) fn overrides(&self, seed: Option<u64>) -> snell::job::Overrides {
+        snell::job::Overrides {
+            width: self.width,
+            height: self.height,
+            spp: self.spp,
+            seed,
+            integrator: self.integrator,
+            sampler: self.sampler,
+            clamp: self.clamp,
+        }
+    }
+}
+
+fn parse_integrator(s: &str) -> Result<IntegratorKind, String> {
+    match s {
+        "whitted" => Ok(IntegratorKind::Whitted),
+        "path" => Ok(IntegratorKind::Path),
+        _ => Err(format!("`{s}` is not an integrator: use whitted or path")),
+    }
+}
+
+fn parse_sampler(s: &str) -> Result<SamplerKind, String> {
+    match s {
+        "sobol" => Ok(SamplerKind::Sobol),
+        "independent" => Ok(SamplerKind::Independent),
+        _ => Err(format!("`{s}` is not a sampler: use sobol or independent")),
+    }
+}
+
+fn parse_clamp(s: &str) -> Result<f32, String> {
+    match s.trim().parse::<f32>() {
+        Ok(v) if v > 0.0 && v.is_finite() => Ok(v),
+        _ => Err(format!(
+            "`{s}` is not a clamp: give a positive number (the most one sample adds to a pixel)"
+        )),
+    }
 }
 
 #[derive(Args, Debug)]

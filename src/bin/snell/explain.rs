@@ -16,15 +16,15 @@ pub(crate) fn explain(args: ExplainArgs) -> ExitCode {
         Err(code) => return code,
     };
     let s = &mut scene.settings;
-    snell::job::Overrides {
-        width: args.image.width,
-        height: args.image.height,
-        spp: args.image.spp,
-        seed: None,
-    }
-    .apply(s);
+    args.image.overrides(None).apply(s);
     if let Err(code) = check_size_and_spp(s, &limits) {
         return code;
+    }
+    if s.integrator.kind != snell::scene::IntegratorKind::Whitted {
+        return usage_error(
+            "explain shows the Whitted integrator's ray trees; it cannot yet follow a path tracer's path",
+            Some("run it with --integrator whitted"),
+        );
     }
     let (x, y) = args.pixel;
     if x >= s.width || y >= s.height {

@@ -5,9 +5,8 @@ use crate::args::RenderArgs;
 use crate::{job_error, usage_error};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use snell::checkpoint::Checkpoint;
-use snell::integrator::Whitted;
 use snell::integrator::aov::{Aov, render_aovs};
-use snell::job::{Overrides, RenderJob};
+use snell::job::RenderJob;
 use snell::output::{ExrLayer, OutputError, OutputFormat, PendingOutput, encode_exr_layers};
 use snell::render::{RenderOptions, TileStore};
 use std::io::IsTerminal;
@@ -66,12 +65,7 @@ pub(crate) fn render(args: RenderArgs) -> ExitCode {
         Ok(l) => l,
         Err(code) => return code,
     };
-    let overrides = Overrides {
-        width: args.image.width,
-        height: args.image.height,
-        spp: args.image.spp,
-        seed: args.seed,
-    };
+    let overrides = args.image.overrides(args.seed);
     let job = match RenderJob::prepare(&scene_path, &overrides, &limits, resumed.as_ref()) {
         Ok(job) => job,
         Err(e) => return job_error(e),
@@ -182,7 +176,8 @@ pub(crate) fn render(args: RenderArgs) -> ExitCode {
             cancel: Some(&STOP),
             store: Some(&store),
         };
-        let r = snell::render::render_with(&scene, &Whitted, &options);
+        let integrator = snell::integrator::chosen(scene.settings.integrator.kind);
+        let r = snell::render::render_with(&scene, integrator, &options);
         finished.store(true, Ordering::SeqCst);
         r
     });
@@ -310,7 +305,11 @@ fn warn_if_long(scene: &snell::Scene, threads: Option<usize>) {
         return;
     }
     let threads = threads.unwrap_or_else(rayon::current_num_threads);
-    let e = render_time(scene, &Whitted, threads);
+    let e = render_time(
+        scene,
+        snell::integrator::chosen(scene.settings.integrator.kind),
+        threads,
+    );
     if e.seconds > 3600.0 {
         eprintln!(
             "warning: this render will take about {} on {threads} threads ({} x {} at {} spp, about {:.2} M samples/s from a probe of {} samples); Ctrl-C stops it and writes what is done",

@@ -4,9 +4,13 @@
 //! become its descriptions, serde defaults its defaults (shown where the default's type is
 //! `Serialize`, which is why a few of these derive it).
 
+mod integrator;
+mod material;
 mod values;
 
-pub use values::{ColorDef, ScaleDef, UvScaleDef};
+pub use integrator::{IntegratorDef, IntegratorKind, SamplerDef};
+pub use material::{MaterialDef, MaterialKind};
+pub use values::{ColorDef, RoughnessDef, ScaleDef, UvScaleDef};
 
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
@@ -31,6 +35,9 @@ pub struct SceneFile {
     /// Picture size, sampling and limits.
     #[serde(default)]
     pub image: ImageDef,
+    /// How light is computed: the Whitted ray tracer or the path tracer, and its settings.
+    #[serde(default)]
+    pub integrator: IntegratorDef,
     /// The camera.
     pub camera: CameraDef,
     /// Light everywhere.
@@ -122,6 +129,7 @@ impl Default for FilterDef {
 }
 
 pub use crate::film::FilterKind;
+pub use crate::light::Falloff;
 
 /// `[camera]`.
 #[derive(Debug, Deserialize, JsonSchema)]
@@ -294,40 +302,6 @@ impl Default for MappingDef {
     }
 }
 
-/// `[materials.NAME]`.
-#[derive(Debug, Deserialize, JsonSchema)]
-#[serde(deny_unknown_fields)]
-pub struct MaterialDef {
-    /// Surface colour (or use `texture`).
-    pub color: Option<ColorDef>,
-    /// Name of a texture giving the surface colour.
-    pub texture: Option<String>,
-    /// Ambient coefficient.
-    #[serde(default = "one")]
-    pub ambient: f32,
-    /// Diffuse coefficient.
-    #[serde(default = "default_diffuse")]
-    pub diffuse: f32,
-    /// Specular colour.
-    #[serde(default = "black")]
-    pub specular: ColorDef,
-    /// Phong exponent.
-    #[serde(default = "default_shininess")]
-    pub shininess: f32,
-    /// Mirror weight.
-    #[serde(default)]
-    pub reflectivity: f32,
-    /// Transmitted fraction.
-    #[serde(default)]
-    pub transparency: f32,
-    /// Index of refraction.
-    #[serde(default = "default_ior")]
-    pub ior: f32,
-    /// Beer-Lambert coefficient per unit length.
-    #[serde(default = "black")]
-    pub absorption: ColorDef,
-}
-
 /// `[[lights]]`.
 #[derive(Debug, Deserialize, JsonSchema)]
 #[serde(tag = "type", rename_all = "lowercase", deny_unknown_fields)]
@@ -336,6 +310,9 @@ pub enum LightDef {
     Point {
         /// Position.
         position: V3,
+        /// How its light weakens with distance (default: `none` under the Whitted
+        /// integrator, `inverse_square` under the path tracer).
+        falloff: Option<Falloff>,
         /// Colour.
         #[serde(default = "white")]
         color: ColorDef,
@@ -358,6 +335,9 @@ pub enum LightDef {
     Spot {
         /// Position.
         position: V3,
+        /// How its light weakens with distance (default: `none` under the Whitted
+        /// integrator, `inverse_square` under the path tracer).
+        falloff: Option<Falloff>,
         /// Point the cone is aimed at (or give `direction`).
         look_at: Option<V3>,
         /// Direction of the cone's axis (or give `look_at`).
@@ -571,15 +551,6 @@ fn unit_scale() -> ScaleDef {
 }
 fn default_fov() -> f32 {
     45.0
-}
-fn default_diffuse() -> f32 {
-    0.8
-}
-fn default_shininess() -> f32 {
-    50.0
-}
-fn default_ior() -> f32 {
-    1.5
 }
 fn default_spot_angle() -> f32 {
     30.0

@@ -147,3 +147,50 @@ fn three<'de, A: SeqAccess<'de>>(mut seq: A, exp: &dyn de::Expected) -> Result<[
     }
     Ok(out)
 }
+
+/// A roughness: a number, or the name of a texture whose mean of r, g and b gives it.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+#[serde(untagged)]
+pub enum RoughnessDef {
+    /// The same everywhere.
+    Value(f32),
+    /// Read from the named texture.
+    Texture(String),
+}
+
+impl<'de> Deserialize<'de> for RoughnessDef {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        struct V;
+        impl<'de> Visitor<'de> for V {
+            type Value = RoughnessDef;
+            fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
+                f.write_str("a roughness: a number, or the name of a texture")
+            }
+            fn visit_f64<E: de::Error>(self, v: f64) -> Result<RoughnessDef, E> {
+                Ok(RoughnessDef::Value(v as f32))
+            }
+            fn visit_i64<E: de::Error>(self, v: i64) -> Result<RoughnessDef, E> {
+                Ok(RoughnessDef::Value(v as f32))
+            }
+            fn visit_u64<E: de::Error>(self, v: u64) -> Result<RoughnessDef, E> {
+                Ok(RoughnessDef::Value(v as f32))
+            }
+            fn visit_str<E: de::Error>(self, v: &str) -> Result<RoughnessDef, E> {
+                Ok(RoughnessDef::Texture(v.to_string()))
+            }
+        }
+        d.deserialize_any(V)
+    }
+}
+
+impl JsonSchema for RoughnessDef {
+    fn schema_name() -> Cow<'static, str> {
+        "Roughness".into()
+    }
+    fn json_schema(_: &mut SchemaGenerator) -> Schema {
+        json_schema!({
+            "description": "A roughness: a number, or the name of a texture (its mean of r, g and b).",
+            "type": ["number", "string"],
+        })
+    }
+}

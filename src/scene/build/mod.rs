@@ -4,18 +4,22 @@
 use super::diag::{DocPath, Format, Problem, SceneError, did_you_mean, offset_of};
 use super::format::*;
 use super::meshes::{LoadedMesh, MeshCache, Palette};
-use super::{BuildStats, Fog, Limits, Object, RenderSettings, Scene};
+use super::{BuildStats, Fog, IntegratorSettings, Limits, Object, RenderSettings, Scene};
 use crate::accel::Bvh;
 use crate::camera::Camera;
 use crate::film::Filter;
 use crate::geometry::{Cone, Cuboid, Cylinder, Disk, Plane, Rect, Shape, Sphere, Triangle};
-use crate::light::Light;
-use crate::material::Material;
+use crate::light::{Light, LightSampler};
 use crate::math::{Color, Frame, Transform, Vec3, Vec3A};
+use crate::sampler::SamplerKind;
 use crate::texture::{ColorSpace, ImageData, Mapping, Pattern, Texture};
+use material::MaterialTextures;
 use std::collections::BTreeMap;
 use std::path::Path;
 use std::sync::Arc;
+
+mod emitters;
+mod material;
 
 /// Reads, checks and builds the scene in `path` (`.toml` or `.json`). Relative paths in it
 /// resolve against its folder.
@@ -465,7 +469,7 @@ impl Builder<'_> {
 
     fn scene(&mut self, def: SceneFile) -> Scene {
         let root = DocPath::default();
-        let settings = self.settings(&def.image, &root.key("image"));
+        let settings = self.settings(&def.image, &def.integrator, &root.key("image"));
         let camera = self.camera(&def.camera, &root.key("camera"));
         let background = self.color(def.image.background, &root.key("image").key("background"));
         let ambient = self.color(def.world.ambient, &root.key("world").key("ambient"));
@@ -484,66 +488,12 @@ impl Builder<'_> {
         let mut material_names = vec![];
         for (name, m) in &def.materials {
             let path = root.key("materials").key(name);
-            let texture = match (&m.color, &m.texture) {
-                (Some(_), Some(_)) => {
-                    self.error_help(
-                        path.key("texture"),
-                        "a material takes `color` or `texture`, not both",
-                        "remove one of them",
-                    );
-                    textures.push(Texture::solid(Color::ONE));
-                    textures.len() - 1
-                }
-                (None, Some(t)) => match texture_names.get(t) {
-                    Some(&i) => {
-                        used_textures[i] = true;
-                        i
-                    }
-                    None => {
-                        let help = match did_you_mean(t, texture_names.keys().map(String::as_str)) {
-                            Some(s) => format!("did you mean `{s}`?"),
-                            None if texture_names.is_empty() => {
-                                "define it under [textures.NAME]".to_string()
-                            }
-                            None => format!(
-                                "defined textures: {}",
-                                texture_names.keys().cloned().collect::<Vec<_>>().join(", ")
-                            ),
-                        };
-                        self.error_help(
-                            path.key("texture"),
-                            format!("no texture named `{t}`"),
-                            help,
-                        );
-                        textures.push(Texture::solid(Color::ONE));
-                        textures.len() - 1
-                    }
-                },
-                (c, None) => {
-                    let c = c.map_or(Color::ONE, |c| self.color(c, &path.key("color")));
-                    textures.push(Texture::solid(c));
-                    textures.len() - 1
-                }
+            let mut names = MaterialTextures {
+                textures: &mut textures,
+                names: &texture_names,
+                used: &mut used_textures,
             };
-            let ambient = self.non_negative(m.ambient, &path.key("ambient"));
-            let diffuse = self.non_negative(m.diffuse, &path.key("diffuse"));
-            let specular = self.color(m.specular, &path.key("specular"));
-            let shininess = self.non_negative(m.shininess, &path.key("shininess"));
-            let reflectivity = self.in_range(m.reflectivity, 0.0, 1.0, &path.key("reflectivity"));
-            let transparency = self.in_range(m.transparency, 0.0, 1.0, &path.key("transparency"));
-            let ior = self.positive(m.ior, &path.key("ior"));
-            let absorption = self.color(m.absorption, &path.key("absorption"));
-            materials.push(Material {
-                texture,
-                ambient,
-                diffuse,
-                specular,
-                shininess,
-                reflectivity,
-                transparency,
-                ior,
-                absorption,
-            });
+            materials.push(self.material(m, &path, &mut names));
             material_names.push(name.clone());
         }
         for (name, &i) in &texture_names {
@@ -607,7 +557,8 @@ impl Builder<'_> {
             self.warnings
                 .push("the scene has no objects: the image will be the background".into());
         }
-        if lights.is_empty() {
+        let emits = materials.iter().any(|m| m.emission.is_some());
+        if lights.is_empty() && !emits {
             self.warnings
                 .push("the scene has no lights: only ambient light will show".into());
         }
@@ -625,6 +576,15 @@ impl Builder<'_> {
             }
         }
 
+        let (area_lights, area_light_of) =
+            emitters::area_lights(&objects, &materials, &mut self.warnings);
+        // The radius of the bounded objects' box, for a directional light's power.
+        let radius = objects
+            .iter()
+            .filter_map(|o| o.world_bounds)
+            .reduce(|a, b| a.union(&b))
+            .map_or(1.0, |b| 0.5 * (b.max - b.min).length());
+        let light_sampler = LightSampler::new(&lights, &area_lights, radius);
         let start = std::time::Instant::now();
         let accel = Bvh::build(&objects);
         self.stats.object_bvh_time = start.elapsed();
@@ -679,6 +639,9 @@ impl Builder<'_> {
             texture_names,
             material_names,
             lights,
+            area_lights,
+            area_light_of,
+            light_sampler,
             warnings: std::mem::take(&mut self.warnings),
             accel,
             transparent,
@@ -689,7 +652,12 @@ impl Builder<'_> {
         }
     }
 
-    fn settings(&mut self, d: &ImageDef, path: &DocPath) -> RenderSettings {
+    fn settings(
+        &mut self,
+        d: &ImageDef,
+        integrator: &IntegratorDef,
+        path: &DocPath,
+    ) -> RenderSettings {
         if let Err(e) = RenderSettings::check_side("width", d.width) {
             self.error(path.key("width"), e);
         }
@@ -699,7 +667,10 @@ impl Builder<'_> {
         let limits = self.limits;
         for (key, check) in [
             ("width", limits.check_pixels(d.width, d.height)),
-            ("samples", limits.check_spp(d.samples)),
+            (
+                "samples",
+                limits.check_spp(d.samples, integrator.kind == IntegratorKind::Whitted),
+            ),
             ("max_depth", limits.check_depth(d.max_depth)),
         ] {
             if let Err((e, help)) = check {
@@ -727,6 +698,26 @@ impl Builder<'_> {
             max_depth: d.max_depth,
             seed: d.seed,
             filter: Filter::new(d.filter.kind, radius),
+            integrator: self.integrator(integrator),
+        }
+    }
+
+    fn integrator(&mut self, d: &IntegratorDef) -> IntegratorSettings {
+        let path = DocPath::default().key("integrator");
+        if d.rr_depth == 0 {
+            self.error(
+                path.key("rr_depth"),
+                "must be 1 or more (the camera ray is depth 1)",
+            );
+        }
+        IntegratorSettings {
+            kind: d.kind,
+            sampler: match d.sampler {
+                SamplerDef::Sobol => SamplerKind::Sobol,
+                SamplerDef::Independent => SamplerKind::Independent,
+            },
+            rr_depth: d.rr_depth.max(1),
+            clamp: d.clamp.map(|c| self.positive(c, &path.key("clamp"))),
         }
     }
 
@@ -929,12 +920,14 @@ impl Builder<'_> {
         match d {
             LightDef::Point {
                 position,
+                falloff,
                 color,
                 intensity,
             } => Light::Point {
                 position: self.point(*position, &path.key("position")),
                 color: self.color(*color, &path.key("color"))
                     * self.non_negative(*intensity, &path.key("intensity")),
+                falloff: *falloff,
             },
             LightDef::Directional {
                 direction,
@@ -947,6 +940,7 @@ impl Builder<'_> {
             },
             LightDef::Spot {
                 position,
+                falloff,
                 look_at,
                 direction,
                 color,
@@ -999,6 +993,7 @@ impl Builder<'_> {
                         * self.non_negative(*intensity, &path.key("intensity")),
                     cos_outer: angle.to_radians().cos(),
                     cos_inner: (angle - soft).to_radians().cos(),
+                    falloff: *falloff,
                 }
             }
         }

@@ -1,7 +1,28 @@
-//! Light sources: point, directional and spot. None falls off with distance (as in the seed
-//! report and POV-Ray's default), so a scene's brightness does not depend on its scale.
+//! Light sources: point, directional and spot (here), area lights on emitting shapes
+//! (area.rs), and the choice among them by power for the path tracer (select.rs). Point and
+//! spot lights fall off with distance as their `falloff` says; by default not at all under
+//! the Whitted integrator (the seed report's and POV-Ray's default, so a scene's brightness
+//! does not depend on its scale), as `1 / d^2` under the path tracer.
+
+pub mod area;
+pub mod select;
+
+pub use area::{AreaLight, Emitter};
+pub use select::{LightChoice, LightSampler};
 
 use crate::math::{Color, Vec3A};
+use schemars::JsonSchema;
+use serde::Deserialize;
+
+/// How a point or spot light's light weakens with distance.
+#[derive(Clone, Copy, Debug, Deserialize, JsonSchema, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub enum Falloff {
+    /// Not at all: the same light at any distance (the seed report's and POV-Ray's default).
+    None,
+    /// As `1 / d^2`, as physics has it: `intensity` is then in watts per steradian.
+    InverseSquare,
+}
 
 /// A light source. Colours are linear RGB radiance multipliers.
 #[derive(Clone, Debug, PartialEq)]
@@ -12,6 +33,8 @@ pub enum Light {
         position: Vec3A,
         /// Colour times intensity.
         color: Color,
+        /// How it weakens with distance; `None`: the integrator's default.
+        falloff: Option<Falloff>,
     },
     /// Parallel light from infinitely far away (the sun).
     Directional {
@@ -32,6 +55,8 @@ pub enum Light {
         cos_outer: f32,
         /// Cosine of the half-angle inside which the light is full.
         cos_inner: f32,
+        /// How it weakens with distance; `None`: the integrator's default.
+        falloff: Option<Falloff>,
     },
 }
 
@@ -48,11 +73,31 @@ pub struct LightSample {
 
 impl Light {
     /// The light reaching `p` from this source, or `None` if it cannot (outside a spot's
-    /// cone, or `p` at the light's position).
+    /// cone, or `p` at the light's position), falling off as the light says, by default not
+    /// at all (the Whitted integrator's reading).
     #[inline]
     pub fn sample(&self, p: Vec3A) -> Option<LightSample> {
+        self.sample_falling_off(p, Falloff::None)
+    }
+
+    /// [`Light::sample`], lights that do not say how they fall off falling off as `default`
+    /// says.
+    #[inline]
+    pub fn sample_falling_off(&self, p: Vec3A, default: Falloff) -> Option<LightSample> {
+        let mut s = self.sample_unattenuated(p)?;
+        if let Light::Point { falloff, .. } | Light::Spot { falloff, .. } = self
+            && falloff.unwrap_or(default) == Falloff::InverseSquare
+        {
+            s.radiance /= s.distance * s.distance;
+        }
+        Some(s)
+    }
+
+    fn sample_unattenuated(&self, p: Vec3A) -> Option<LightSample> {
         match self {
-            Light::Point { position, color } => {
+            Light::Point {
+                position, color, ..
+            } => {
                 let d = *position - p;
                 let distance = d.length();
                 (distance > 0.0).then(|| LightSample {
@@ -72,6 +117,7 @@ impl Light {
                 color,
                 cos_outer,
                 cos_inner,
+                ..
             } => {
                 let d = *position - p;
                 let distance = d.length();
@@ -119,6 +165,7 @@ mod tests {
             color: Color::ONE,
             cos_outer: angle.to_radians().cos(),
             cos_inner: (angle - soft).to_radians().cos(),
+            falloff: None,
         }
     }
 
@@ -145,11 +192,16 @@ mod tests {
         let p = Light::Point {
             position: Vec3A::new(0.0, 4.0, 3.0),
             color: Color::splat(2.0),
+            falloff: None,
         };
         let s = p.sample(Vec3A::ZERO).unwrap();
         assert!((s.distance - 5.0).abs() < 1e-6);
         assert!((s.to_light - Vec3A::new(0.0, 0.8, 0.6)).length() < 1e-6);
         assert_eq!(s.radiance, Color::splat(2.0), "no distance falloff");
+        let s = p
+            .sample_falling_off(Vec3A::ZERO, Falloff::InverseSquare)
+            .unwrap();
+        assert!((s.radiance.x - 2.0 / 25.0).abs() < 1e-7, "1 / d^2");
         let d = Light::Directional {
             direction: -Vec3A::Y,
             color: Color::ONE,

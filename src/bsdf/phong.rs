@@ -1,0 +1,215 @@
+//! The path tracer's reading of a Phong material: a mix, by weights that sum to 1, of a base
+//! (Lambertian, or plastic where the material has a highlight), a perfect mirror and smooth
+//! glass, each of which conserves energy, so the mix does too. The weights follow the
+//! Whitted integrator's split: glass `transparency`, mirror `(1 - transparency) *
+//! reflectivity`, the base the rest.
+
+use super::{BsdfSample, Conductor, Dielectric, Lambert, Plastic};
+use crate::math::{Color, Vec2, Vec3A};
+
+/// The base a Phong material's diffuse and highlight become.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum PhongBase {
+    /// No highlight: Lambertian.
+    Lambert(Lambert),
+    /// A highlight: diffuse under a clear coat whose roughness comes from the exponent.
+    Plastic(Plastic),
+}
+
+impl PhongBase {
+    fn f(&self, wo: Vec3A, wi: Vec3A) -> Color {
+        match self {
+            PhongBase::Lambert(b) => b.f(wo, wi),
+            PhongBase::Plastic(b) => b.f(wo, wi),
+        }
+    }
+
+    fn pdf(&self, wo: Vec3A, wi: Vec3A) -> f32 {
+        match self {
+            PhongBase::Lambert(b) => b.pdf(wo, wi),
+            PhongBase::Plastic(b) => b.pdf(wo, wi),
+        }
+    }
+
+    fn sample(&self, wo: Vec3A, u: Vec2, uc: f32) -> Option<BsdfSample> {
+        match self {
+            PhongBase::Lambert(b) => b.sample(wo, u),
+            PhongBase::Plastic(b) => b.sample(wo, u, uc),
+        }
+    }
+}
+
+/// A Phong material as the path tracer reads it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PhongMix {
+    /// The diffuse base, with its highlight.
+    pub base: PhongBase,
+    /// The mirror (a smooth conductor reflecting everything).
+    pub mirror: Conductor,
+    /// The glass (smooth).
+    pub glass: Dielectric,
+    /// Weights of base, mirror and glass: each in `[0, 1]`, summing to 1.
+    pub weights: [f32; 3],
+}
+
+/// One of the mix's parts, for dispatch.
+enum Part<'a> {
+    Base(&'a PhongBase),
+    Mirror(&'a Conductor),
+    Glass(&'a Dielectric),
+}
+
+impl PhongMix {
+    /// The mix's weights from a Phong material's `reflectivity` and `transparency`.
+    pub fn weights(reflectivity: f32, transparency: f32) -> [f32; 3] {
+        let glass = transparency.clamp(0.0, 1.0);
+        let mirror = (1.0 - glass) * reflectivity.clamp(0.0, 1.0);
+        [(1.0 - glass - mirror).max(0.0), mirror, glass]
+    }
+
+    fn part(&self, i: usize) -> Part<'_> {
+        match i {
+            0 => Part::Base(&self.base),
+            1 => Part::Mirror(&self.mirror),
+            _ => Part::Glass(&self.glass),
+        }
+    }
+
+    /// The weighted sum of the parts' values (the mirror and smooth glass, deltas, add
+    /// nothing).
+    pub fn f(&self, wo: Vec3A, wi: Vec3A) -> Color {
+        if self.weights[0] > 0.0 {
+            self.base.f(wo, wi) * self.weights[0]
+        } else {
+            Color::ZERO
+        }
+    }
+
+    /// The density of [`PhongMix::sample`]: each part's, weighted by its chance.
+    pub fn pdf(&self, wo: Vec3A, wi: Vec3A) -> f32 {
+        if self.weights[0] > 0.0 {
+            self.base.pdf(wo, wi) * self.weights[0]
+        } else {
+            0.0
+        }
+    }
+
+    /// A part chosen by its weight with `uc` (whose remainder then chooses within the
+    /// part), then sampled.
+    pub fn sample(&self, wo: Vec3A, u: Vec2, uc: f32) -> Option<BsdfSample> {
+        let mut start = 0.0;
+        let mut chosen = None;
+        for (i, &w) in self.weights.iter().enumerate() {
+            if w > 0.0 && (uc < start + w || chosen.is_none() && i == 2) {
+                chosen = Some((i, ((uc - start) / w).clamp(0.0, 1.0 - f32::EPSILON / 2.0)));
+                break;
+            }
+            start += w;
+        }
+        // Rounding can leave `uc` past the last weight: take the last part that has one.
+        let (i, uc) = chosen.or_else(|| {
+            (0..3)
+                .rev()
+                .find(|&i| self.weights[i] > 0.0)
+                .map(|i| (i, 0.5))
+        })?;
+        let w = self.weights[i];
+        let mut s = match self.part(i) {
+            Part::Base(b) => b.sample(wo, u, uc)?,
+            Part::Mirror(m) => m.sample(wo, u)?,
+            Part::Glass(g) => g.sample(wo, u, uc)?,
+        };
+        if s.lobe.is_specular() {
+            s.f *= w;
+            s.pdf *= w;
+        } else {
+            // Only the base is not a delta: its value and density, weighted.
+            s.f = self.f(wo, s.wi);
+            s.pdf = self.pdf(wo, s.wi);
+            if s.pdf <= 0.0 {
+                return None;
+            }
+        }
+        Some(s)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::microfacet::Ggx;
+    use super::super::{Bsdf, ConductorFresnel, harness, internal_diffuse_reflectance};
+    use super::*;
+
+    fn mix(highlight: bool, reflectivity: f32, transparency: f32) -> Bsdf {
+        let r = Color::new(0.8, 0.5, 0.2);
+        let base = if highlight {
+            PhongBase::Plastic(Plastic {
+                r,
+                eta: 1.5,
+                fdr_int: internal_diffuse_reflectance(1.5),
+                distribution: Ggx::isotropic(0.2),
+            })
+        } else {
+            PhongBase::Lambert(Lambert { r })
+        };
+        Bsdf::Phong(PhongMix {
+            base,
+            mirror: Conductor {
+                fresnel: ConductorFresnel::One,
+                distribution: Ggx::isotropic(0.0),
+                tint: Color::ONE,
+            },
+            glass: Dielectric {
+                eta: 1.5,
+                distribution: Ggx::isotropic(0.0),
+            },
+            weights: PhongMix::weights(reflectivity, transparency),
+        })
+    }
+
+    #[test]
+    fn weights_split_as_whitted_does_and_sum_to_one() {
+        assert_eq!(PhongMix::weights(0.0, 0.0), [1.0, 0.0, 0.0]);
+        assert_eq!(PhongMix::weights(0.8, 0.0), [0.19999999, 0.8, 0.0]);
+        assert_eq!(PhongMix::weights(0.5, 1.0), [0.0, 0.0, 1.0]);
+        let w = PhongMix::weights(0.5, 0.5);
+        assert_eq!(w, [0.25, 0.25, 0.5]);
+    }
+
+    #[test]
+    fn sampling_matches_the_pdf() {
+        harness::chi2_all_incidences("phong diffuse", &mix(false, 0.3, 0.0));
+        harness::chi2_all_incidences("phong plastic", &mix(true, 0.3, 0.2));
+    }
+
+    #[test]
+    fn conserves_energy_and_is_reciprocal() {
+        for (h, r, t) in [(false, 0.0, 0.0), (true, 0.0, 0.0), (true, 0.5, 0.3)] {
+            harness::energy_and_reciprocity("phong", &mix(h, r, t), None);
+        }
+    }
+
+    /// The deltas carry their weight: a perfect mirror of weight 0.8 returns 0.8 of the
+    /// light in its sampled direction, and the glass what Fresnel and its weight leave.
+    #[test]
+    fn delta_parts_carry_their_weight() {
+        let b = mix(false, 0.8, 0.0);
+        let wo = Vec3A::new(0.3, 0.0, 0.954).normalize();
+        let (mut mirror, mut n) = (0.0, 0);
+        for k in 0..1000 {
+            let uc = (k as f32 + 0.5) / 1000.0;
+            if let Some(s) = b.sample(wo, Vec2::new(0.3, 0.7), uc)
+                && s.lobe.is_specular()
+            {
+                mirror += s.f.x * s.wi.z.abs() / s.pdf;
+                n += 1;
+            }
+        }
+        assert!((n as f32 / 1000.0 - 0.8).abs() < 0.01, "{n}");
+        assert!(
+            (mirror / n as f32 - 1.0).abs() < 1e-5,
+            "{}",
+            mirror / n as f32
+        );
+    }
+}

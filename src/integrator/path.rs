@@ -1,0 +1,231 @@
+//! Unidirectional path tracing with next-event estimation and multiple importance sampling.
+//!
+//! At each vertex the path adds the light of one light chosen by power (a shadow ray) and
+//! continues in a direction the BSDF samples; light reached both ways (area lights hit by a
+//! BSDF sample) is weighed between the two by the power heuristic. Depth counts segments as
+//! Mitsuba 3 does: the camera ray is 1, so `max_depth = 1` shows only the lights seen
+//! directly and `max_depth = 2` is direct light. Russian roulette may end a path once it has
+//! bounced `rr_depth` times, with survival `min(max(throughput * eta^2), 0.95)`, as Mitsuba.
+//! Rays that leave the scene see the background as a constant environment (not sampled by
+//! next-event estimation). Inside a dielectric with absorption, light falls off by
+//! Beer-Lambert; Whitted's ambient term and fog are not read.
+
+use super::RayStats;
+use crate::bsdf::{Bsdf, BsdfSample};
+use crate::light::Falloff;
+use crate::math::distribution::power_heuristic;
+use crate::math::{Color, Frame, Ray, Vec3A, offset_ray_origin};
+use crate::sampler::Sampler;
+use crate::scene::{Hit, Scene};
+
+/// The path tracer.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Path;
+
+/// How much of a shadow ray's length is tested: the last part would meet the light itself.
+const SHADOW_SHORTEN: f32 = 1.0 - 1e-4;
+
+/// What a path needs at one of its vertices, in the surface's shading frame.
+struct Vertex {
+    /// The BSDF there.
+    bsdf: Bsdf,
+    /// The shading frame (`w` the shading normal, on the outward side).
+    frame: Frame,
+    /// Toward the previous vertex, local.
+    wo: Vec3A,
+    /// The geometric normal, outward.
+    ng: Vec3A,
+}
+
+impl Path {
+    /// The radiance arriving along the camera ray `ray`, with random numbers from
+    /// `sampler` (started at this sample).
+    pub fn radiance(
+        &self,
+        scene: &Scene,
+        ray: &Ray,
+        sampler: &mut Sampler,
+        rays: &mut RayStats,
+    ) -> Color {
+        let settings = &scene.settings.integrator;
+        let max_depth = scene.settings.max_depth;
+        let mut l = Color::ZERO;
+        let mut beta = Color::ONE;
+        let mut eta_scale = 1.0f32;
+        let mut ray = *ray;
+        let mut skip = crate::accel::Skip::NONE;
+        // Segments traced, the one under way included.
+        let mut depth = 1u32;
+        // The previous bounce: a delta lobe (or the camera), and its BSDF density.
+        let (mut specular, mut prev_pdf, mut prev_point) = (true, 0.0f32, ray.origin);
+        // The absorption of the solid the path is inside, if any.
+        let mut medium: Option<Color> = None;
+        rays.camera += 1;
+        loop {
+            rays.deepest = rays.deepest.max(depth);
+            let Some(hit) = scene.closest_hit_skipping(&ray, f32::INFINITY, skip) else {
+                l += beta * scene.background;
+                break;
+            };
+            if let Some(sigma) = medium {
+                beta *= (-sigma * hit.t).exp();
+            }
+            let m = scene.material_at(&hit);
+            let front = ray.dir.dot(hit.normal) < 0.0;
+            if let Some(e) = &m.emission {
+                let le = e.emitted(front);
+                if le != Color::ZERO {
+                    l += beta
+                        * le
+                        * self.emitter_weight(scene, &hit, specular, prev_pdf, prev_point);
+                }
+            }
+            if depth >= max_depth {
+                break;
+            }
+            let base = scene.textures[m.texture].eval(&hit.tex);
+            let frame = Frame::from_axis(hit.shading_normal);
+            let v = Vertex {
+                bsdf: m.bsdf(&scene.textures, &hit.tex, base),
+                wo: frame.to_local(-ray.dir),
+                frame,
+                ng: hit.normal,
+            };
+            // Both strategies' numbers are drawn whether used or not, so that each bounce
+            // takes the same dimensions of the sampler.
+            let (uc, ul) = (sampler.next_1d(), sampler.next_2d());
+            if v.bsdf.has_non_delta() {
+                l += beta * self.light_sample(scene, &hit, &v, uc, ul, rays);
+            }
+            let (uc, u) = (sampler.next_1d(), sampler.next_2d());
+            let ur = sampler.next_1d();
+            let Some(bs) = v.bsdf.sample(v.wo, u, uc) else {
+                break;
+            };
+            let Some((dir, through)) = self.continue_from(&v, &bs) else {
+                break;
+            };
+            beta *= bs.f * (bs.wi.z.abs() / bs.pdf);
+            if !beta.is_finite() || beta == Color::ZERO {
+                break;
+            }
+            eta_scale *= v.bsdf.radiance_scale(v.wo, bs.wi);
+            specular = bs.lobe.is_specular();
+            prev_pdf = bs.pdf;
+            prev_point = hit.point;
+            let outward = dir.dot(hit.normal) > 0.0;
+            if through {
+                // Into the solid when the path came from outside, out of it otherwise.
+                medium = if front { m.absorption_inside() } else { None };
+            }
+            let side = if outward { hit.normal } else { -hit.normal };
+            ray = Ray::new(offset_ray_origin(hit.point, side), dir);
+            skip = scene.leaving(&hit, outward);
+            depth += 1;
+            rays.secondary += 1;
+            if depth > settings.rr_depth + 1 {
+                let q = ((beta * eta_scale).max_element()).min(0.95);
+                if ur >= q {
+                    break;
+                }
+                beta /= q;
+            }
+        }
+        match settings.clamp {
+            Some(c) => l.min(Color::splat(c)),
+            None => l,
+        }
+    }
+
+    /// The MIS weight of emission found by a BSDF sample from `prev_point` with density
+    /// `prev_pdf`: 1 after a delta bounce or for emitters light sampling never picks.
+    fn emitter_weight(
+        &self,
+        scene: &Scene,
+        hit: &Hit,
+        specular: bool,
+        prev_pdf: f32,
+        prev_point: Vec3A,
+    ) -> f32 {
+        if specular {
+            return 1.0;
+        }
+        let Some(a) = scene.area_light_of[hit.object] else {
+            return 1.0;
+        };
+        let a = a as usize;
+        let light = &scene.area_lights[a];
+        let p_light =
+            scene.light_sampler.area_probability(a) * light.pdf(prev_point, hit.point, hit.normal);
+        power_heuristic(prev_pdf, p_light)
+    }
+
+    /// Next-event estimation at `hit`: one light chosen by power, its light through the
+    /// BSDF, weighed by MIS against the BSDF's sampling of the same direction.
+    fn light_sample(
+        &self,
+        scene: &Scene,
+        hit: &Hit,
+        v: &Vertex,
+        uc: f32,
+        ul: crate::math::Vec2,
+        rays: &mut RayStats,
+    ) -> Color {
+        let Some(c) = scene.light_sampler.sample(
+            &scene.lights,
+            &scene.area_lights,
+            hit.point,
+            uc,
+            ul,
+            Falloff::InverseSquare,
+        ) else {
+            return Color::ZERO;
+        };
+        if c.pdf.is_nan() || c.pdf <= 0.0 {
+            return Color::ZERO;
+        }
+        let wi = v.frame.to_local(c.to_light);
+        // The geometric and the shading normal must agree on the side the light is on, or
+        // light would leak through the surface.
+        let outward = c.to_light.dot(v.ng) > 0.0;
+        let wo_outward = v.frame.to_world(v.wo).dot(v.ng) > 0.0;
+        if (wi.z * v.wo.z > 0.0) != (outward == wo_outward) {
+            return Color::ZERO;
+        }
+        let f = v.bsdf.f(v.wo, wi) * wi.z.abs();
+        if f == Color::ZERO {
+            return Color::ZERO;
+        }
+        let side = if outward { v.ng } else { -v.ng };
+        let shadow = Ray::new(offset_ray_origin(hit.point, side), c.to_light);
+        rays.shadow += 1;
+        let t_max = if c.distance.is_finite() {
+            c.distance * SHADOW_SHORTEN
+        } else {
+            f32::INFINITY
+        };
+        if scene.occluded(&shadow, t_max, scene.leaving(hit, outward)) {
+            return Color::ZERO;
+        }
+        let w = if c.delta {
+            1.0
+        } else {
+            power_heuristic(c.pdf, v.bsdf.pdf(v.wo, wi))
+        };
+        f * c.radiance * (w / c.pdf)
+    }
+
+    /// The world direction of a BSDF sample and whether it passes through the surface;
+    /// `None` where the geometric normal and the shading normal disagree about that (a
+    /// reflection that would go into the solid, or a refraction that would stay out).
+    fn continue_from(&self, v: &Vertex, bs: &BsdfSample) -> Option<(Vec3A, bool)> {
+        if bs.pdf.is_nan() || bs.pdf <= 0.0 {
+            return None;
+        }
+        let dir = v.frame.to_world(bs.wi).normalize_or_zero();
+        let wo = v.frame.to_world(v.wo);
+        let through_shading = bs.wi.z * v.wo.z < 0.0;
+        let through = dir.dot(v.ng) * wo.dot(v.ng) < 0.0;
+        (through == through_shading && dir != Vec3A::ZERO).then_some((dir, through))
+    }
+}

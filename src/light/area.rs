@@ -1,0 +1,196 @@
+//! Area lights: the emitting shapes the path tracer samples, in world space. Rectangles
+//! (parallelograms), disks and triangles are sampled uniformly by area, spheres uniformly
+//! within the cone of directions they fill. Emission leaves the front side (where the
+//! shape's outward normal points) or both.
+
+use crate::geometry::{Disk, Rect, Sphere, SurfaceSample, Triangle, area_to_solid_angle};
+use crate::math::{Color, Vec2, Vec3A};
+
+/// An emitting shape in world space.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Emitter {
+    /// A parallelogram.
+    Rect(Rect),
+    /// A disk.
+    Disk(Disk),
+    /// A triangle.
+    Triangle(Triangle),
+    /// A sphere (its centre in world space).
+    Sphere(Sphere),
+}
+
+impl Emitter {
+    /// The shape's area.
+    pub fn area(&self) -> f32 {
+        match self {
+            Emitter::Rect(s) => s.area(),
+            Emitter::Disk(s) => s.area(),
+            Emitter::Triangle(s) => s.area(),
+            Emitter::Sphere(s) => s.area(),
+        }
+    }
+}
+
+/// An emitting object, as a light.
+#[derive(Clone, Debug, PartialEq)]
+pub struct AreaLight {
+    /// Its shape, in world space.
+    pub emitter: Emitter,
+    /// Radiance leaving it, linear RGB.
+    pub radiance: Color,
+    /// Whether both sides emit.
+    pub two_sided: bool,
+    /// The object it is.
+    pub object: usize,
+}
+
+/// A point on an area light seen from a point in the scene.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct AreaSample {
+    /// The point on the light.
+    pub point: Vec3A,
+    /// The light's front normal there.
+    pub normal: Vec3A,
+    /// The density per unit solid angle at the point it was sampled from.
+    pub pdf: f32,
+}
+
+impl AreaLight {
+    /// Its power (flux) in luminance: `pi * area * L` a side.
+    pub fn power(&self) -> f32 {
+        let sides = if self.two_sided { 2.0 } else { 1.0 };
+        std::f32::consts::PI * self.emitter.area() * crate::math::luminance(self.radiance) * sides
+    }
+
+    /// The radiance leaving a point of front normal `normal` toward `dir` (unit, away from
+    /// the light).
+    #[inline]
+    pub fn emitted(&self, normal: Vec3A, dir: Vec3A) -> Color {
+        if self.two_sided || normal.dot(dir) > 0.0 {
+            self.radiance
+        } else {
+            Color::ZERO
+        }
+    }
+
+    /// A point of the light chosen for `from`, with its density per unit solid angle.
+    pub fn sample(&self, from: Vec3A, u: Vec2) -> Option<AreaSample> {
+        let by_area = |s: SurfaceSample| {
+            let pdf = area_to_solid_angle(s.pdf, from, s.point, s.normal)?;
+            Some(AreaSample {
+                point: s.point,
+                normal: s.normal,
+                pdf,
+            })
+        };
+        match &self.emitter {
+            Emitter::Rect(s) => by_area(s.sample_area(u)),
+            Emitter::Disk(s) => by_area(s.sample_area(u)),
+            Emitter::Triangle(s) => by_area(s.sample_area(u)),
+            Emitter::Sphere(s) => {
+                let p = s.sample_solid_angle(from, u)?;
+                (p.pdf > 0.0 && p.pdf.is_finite()).then_some(AreaSample {
+                    point: p.point,
+                    normal: p.normal,
+                    pdf: p.pdf,
+                })
+            }
+        }
+    }
+
+    /// The density per unit solid angle with which [`AreaLight::sample`] for `from` picks
+    /// `point` (on the light, front normal `normal`).
+    pub fn pdf(&self, from: Vec3A, point: Vec3A, normal: Vec3A) -> f32 {
+        match &self.emitter {
+            Emitter::Sphere(s) => s.solid_angle_pdf(from, point),
+            e => area_to_solid_angle(1.0 / e.area(), from, point, normal).unwrap_or(0.0),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::math::chi2::{SphereBins, chi2_sphere};
+
+    fn light(emitter: Emitter) -> AreaLight {
+        AreaLight {
+            emitter,
+            radiance: Color::ONE,
+            two_sided: false,
+            object: 0,
+        }
+    }
+
+    /// Each shape's sampling, seen from a point, has the solid-angle density `pdf` says:
+    /// chi-square over the directions toward the samples.
+    #[test]
+    fn sampling_matches_the_solid_angle_pdf() {
+        let from = Vec3A::new(0.3, -0.2, 0.1);
+        let lights = [
+            light(Emitter::Rect(
+                Rect::new(
+                    Vec3A::new(-1.0, 1.0, -0.5),
+                    Vec3A::new(2.0, 0.0, 0.0),
+                    Vec3A::new(0.3, 0.0, 1.5),
+                )
+                .unwrap(),
+            )),
+            light(Emitter::Disk(Disk::new(
+                Vec3A::new(0.0, 0.0, 1.5),
+                Vec3A::new(0.2, 0.1, -1.0),
+                1.0,
+            ))),
+            light(Emitter::Triangle(
+                Triangle::new(
+                    Vec3A::new(-1.0, -1.0, 1.0),
+                    Vec3A::new(1.0, -1.2, 0.8),
+                    Vec3A::new(0.0, 1.0, 1.3),
+                )
+                .unwrap(),
+            )),
+            light(Emitter::Sphere(Sphere {
+                center: Vec3A::new(1.0, 0.5, 1.0),
+                radius: 0.7,
+            })),
+        ];
+        for l in &lights {
+            let result = chi2_sphere(
+                &format!("{:?}", l.emitter),
+                SphereBins::default(),
+                |u| l.sample(from, u).map(|s| (s.point - from).normalize()),
+                |dir| {
+                    // The point of the light in `dir`, if any: where a ray meets it.
+                    let ray = crate::math::Ray::new(from, dir);
+                    let shape = match &l.emitter {
+                        Emitter::Rect(s) => crate::geometry::Shape::Rect(s.clone()),
+                        Emitter::Disk(s) => crate::geometry::Shape::Disk(s.clone()),
+                        Emitter::Triangle(s) => crate::geometry::Shape::Triangle(s.clone()),
+                        Emitter::Sphere(s) => crate::geometry::Shape::Sphere(s.clone()),
+                    };
+                    match shape.intersect(&ray, f32::INFINITY) {
+                        Some(h) => {
+                            let p = ray.at(h.t);
+                            let n = shape.surface(p, &h, false).normal;
+                            l.pdf(from, p, n)
+                        }
+                        None => 0.0,
+                    }
+                },
+            );
+            if let Err(e) = result {
+                panic!("{e}");
+            }
+        }
+    }
+
+    #[test]
+    fn emits_from_the_front_unless_two_sided() {
+        let mut l = light(Emitter::Disk(Disk::new(Vec3A::ZERO, Vec3A::Z, 1.0)));
+        assert_eq!(l.emitted(Vec3A::Z, Vec3A::new(0.0, 0.6, 0.8)), Color::ONE);
+        assert_eq!(l.emitted(Vec3A::Z, -Vec3A::Z), Color::ZERO);
+        l.two_sided = true;
+        assert_eq!(l.emitted(Vec3A::Z, -Vec3A::Z), Color::ONE);
+        assert!((l.power() - 2.0 * std::f32::consts::PI * std::f32::consts::PI).abs() < 1e-4);
+    }
+}

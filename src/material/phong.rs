@@ -1,0 +1,52 @@
+//! `type = "phong"` (the default): the seed report's terms, which the Whitted integrator
+//! reads as they are. The path tracer reads them as a mix that conserves energy
+//! ([`PhongMix`]): glass of index `ior` with weight `transparency`, a perfect mirror with
+//! weight `(1 - transparency) * reflectivity`, and for the rest the colour times `diffuse`
+//! (clamped to 1) as Lambertian reflection, under a clear coat of index 1.5 whose roughness
+//! matches `shininess` where `specular` is not black. `ambient` is Whitted's only: the path
+//! tracer computes the light that ambient stands in for.
+
+use super::{Material, alpha_of};
+use crate::bsdf::microfacet::Ggx;
+use crate::bsdf::{
+    Bsdf, Conductor, ConductorFresnel, Dielectric, Lambert, PhongBase, PhongMix, Plastic,
+    internal_diffuse_reflectance,
+};
+use crate::math::Color;
+
+/// The coat's index of refraction (a typical varnish or plastic).
+pub const COAT_IOR: f32 = 1.5;
+
+/// The BSDF at a point whose colour is `base`.
+pub fn bsdf(m: &Material, base: Color) -> Bsdf {
+    let r = (base * m.diffuse).clamp(Color::ZERO, Color::ONE);
+    let base = if m.specular.max_element() > 0.0 {
+        PhongBase::Plastic(Plastic {
+            r,
+            eta: COAT_IOR,
+            fdr_int: coat_fdr(),
+            distribution: Ggx::isotropic(alpha_of(m.shininess)),
+        })
+    } else {
+        PhongBase::Lambert(Lambert { r })
+    };
+    Bsdf::Phong(PhongMix {
+        base,
+        mirror: Conductor {
+            fresnel: ConductorFresnel::One,
+            distribution: Ggx::isotropic(0.0),
+            tint: m.mirror_tint.clamp(Color::ZERO, Color::ONE),
+        },
+        glass: Dielectric {
+            eta: m.ior,
+            distribution: Ggx::isotropic(0.0),
+        },
+        weights: PhongMix::weights(m.reflectivity, m.transparency),
+    })
+}
+
+/// [`internal_diffuse_reflectance`] of [`COAT_IOR`], worked out once.
+fn coat_fdr() -> f32 {
+    static FDR: std::sync::OnceLock<f32> = std::sync::OnceLock::new();
+    *FDR.get_or_init(|| internal_diffuse_reflectance(COAT_IOR))
+}

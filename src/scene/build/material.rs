@@ -1,0 +1,229 @@
+//! `[materials.NAME]` to a [`Material`]: the keys its type reads, checked, with a clear error
+//! for a key that another type reads; colours and roughness constant or from textures.
+
+use super::Builder;
+use crate::bsdf::{ConductorFresnel, metals};
+use crate::material::{self, Emission, Material, Scalar};
+use crate::math::Color;
+use crate::scene::diag::{DocPath, did_you_mean};
+use crate::scene::format::{ColorDef, MaterialDef, MaterialKind, RoughnessDef};
+use crate::texture::Texture;
+use std::collections::BTreeMap;
+
+/// The textures a material may name, and which have been named.
+pub(crate) struct MaterialTextures<'a> {
+    /// Every texture (a material's constant colour is added as a solid one).
+    pub textures: &'a mut Vec<Texture>,
+    /// The named textures, by name.
+    pub names: &'a BTreeMap<String, usize>,
+    /// Per named texture, whether some material uses it.
+    pub used: &'a mut [bool],
+}
+
+impl MaterialTextures<'_> {
+    /// A new solid texture of colour `c`.
+    fn solid(&mut self, c: Color) -> usize {
+        self.textures.push(Texture::solid(c));
+        self.textures.len() - 1
+    }
+}
+
+const PHONG_DIFFUSE: f32 = 0.8;
+const PHONG_SHININESS: f32 = 50.0;
+const DEFAULT_IOR: f32 = 1.5;
+
+impl Builder<'_> {
+    pub(super) fn material(
+        &mut self,
+        m: &MaterialDef,
+        path: &DocPath,
+        tex: &mut MaterialTextures,
+    ) -> Material {
+        for (key, kind) in m.given() {
+            if !m.kind.reads(kind) {
+                let readers: Vec<&str> = MaterialKind::ALL
+                    .iter()
+                    .filter(|k| k.reads(kind))
+                    .map(|k| k.name())
+                    .collect();
+                self.error_help(
+                    path.key(key),
+                    format!(
+                        "a `{}` material has no `{key}`: only {} materials read it",
+                        m.kind.name(),
+                        readers.join(", ")
+                    ),
+                    "remove it, or set `type` to the kind of material you mean (the default is `phong`)"
+                        .to_string(),
+                );
+            }
+        }
+        let (texture, color) = self.material_color(m, path, tex);
+        let emission = m.emission.map(|e| Emission {
+            radiance: self.color(e, &path.key("emission")),
+            two_sided: m.two_sided.unwrap_or(false),
+        });
+        if m.two_sided.is_some() && m.emission.is_none() {
+            self.error_help(
+                path.key("two_sided"),
+                "`two_sided` says which sides emit, and this material has no `emission`",
+                "add `emission = [r, g, b]`, or remove `two_sided`",
+            );
+        }
+        let ior = m
+            .ior
+            .map_or(DEFAULT_IOR, |x| self.positive(x, &path.key("ior")));
+        let absorption = m
+            .absorption
+            .map_or(Color::ZERO, |c| self.color(c, &path.key("absorption")));
+        let (roughness, alpha) = self.roughness(&m.roughness, &path.key("roughness"), tex);
+        match m.kind {
+            MaterialKind::Phong => {
+                let mut out = Material::base(texture, material::Surface::Phong, emission);
+                out.ambient = m
+                    .ambient
+                    .map_or(1.0, |x| self.non_negative(x, &path.key("ambient")));
+                out.diffuse = m.diffuse.map_or(PHONG_DIFFUSE, |x| {
+                    self.non_negative(x, &path.key("diffuse"))
+                });
+                out.specular = m
+                    .specular
+                    .map_or(Color::ZERO, |c| self.color(c, &path.key("specular")));
+                out.shininess = m.shininess.map_or(PHONG_SHININESS, |x| {
+                    self.non_negative(x, &path.key("shininess"))
+                });
+                out.reflectivity = m.reflectivity.map_or(0.0, |x| {
+                    self.in_range(x, 0.0, 1.0, &path.key("reflectivity"))
+                });
+                out.transparency = m.transparency.map_or(0.0, |x| {
+                    self.in_range(x, 0.0, 1.0, &path.key("transparency"))
+                });
+                out.ior = ior;
+                out.absorption = absorption;
+                out
+            }
+            MaterialKind::Diffuse => material::diffuse::material(texture, emission),
+            MaterialKind::Conductor => {
+                let fresnel = self.conductor_fresnel(m, path);
+                material::conductor::Conductor { fresnel, roughness }
+                    .material(texture, color, alpha, emission)
+            }
+            MaterialKind::Dielectric => material::dielectric::Dielectric { roughness }
+                .material(texture, ior, absorption, alpha, emission),
+            MaterialKind::Thin => material::thin::material(texture, ior, emission),
+            MaterialKind::Plastic => material::plastic::Plastic::new(roughness, ior)
+                .material(texture, ior, alpha, emission),
+        }
+    }
+
+    /// The texture giving the material's colour (a new solid one for a constant colour),
+    /// and the colour where it is constant (white where a texture gives it).
+    fn material_color(
+        &mut self,
+        m: &MaterialDef,
+        path: &DocPath,
+        tex: &mut MaterialTextures,
+    ) -> (usize, Color) {
+        match (&m.color, &m.texture) {
+            (Some(_), Some(_)) => {
+                self.error_help(
+                    path.key("texture"),
+                    "a material takes `color` or `texture`, not both",
+                    "remove one of them",
+                );
+                (tex.solid(Color::ONE), Color::ONE)
+            }
+            (None, Some(t)) => match self.texture_named(t, &path.key("texture"), tex) {
+                Some(i) => (i, Color::ONE),
+                None => (tex.solid(Color::ONE), Color::ONE),
+            },
+            (c, None) => {
+                let c = c.map_or(Color::ONE, |c| self.color(c, &path.key("color")));
+                (tex.solid(c), c)
+            }
+        }
+    }
+
+    /// The named texture's index, marked used, or an error with a suggestion.
+    fn texture_named(
+        &mut self,
+        name: &str,
+        path: &DocPath,
+        tex: &mut MaterialTextures,
+    ) -> Option<usize> {
+        if let Some(&i) = tex.names.get(name) {
+            tex.used[i] = true;
+            return Some(i);
+        }
+        let help = match did_you_mean(name, tex.names.keys().map(String::as_str)) {
+            Some(s) => format!("did you mean `{s}`?"),
+            None if tex.names.is_empty() => "define it under [textures.NAME]".to_string(),
+            None => format!(
+                "defined textures: {}",
+                tex.names.keys().cloned().collect::<Vec<_>>().join(", ")
+            ),
+        };
+        self.error_help(path.clone(), format!("no texture named `{name}`"), help);
+        None
+    }
+
+    /// The roughness and, for the Whitted integrator, its constant value (a texture's is
+    /// taken as 0.5 there, a middling highlight).
+    fn roughness(
+        &mut self,
+        r: &Option<RoughnessDef>,
+        path: &DocPath,
+        tex: &mut MaterialTextures,
+    ) -> (Scalar, f32) {
+        match r {
+            None => (Scalar::Value(0.0), 0.0),
+            Some(RoughnessDef::Value(v)) => {
+                let v = self.in_range(*v, 0.0, 1.0, path);
+                (Scalar::Value(v), v)
+            }
+            Some(RoughnessDef::Texture(name)) => match self.texture_named(name, path, tex) {
+                Some(i) => (Scalar::Texture(i), 0.5),
+                None => (Scalar::Value(0.0), 0.0),
+            },
+        }
+    }
+
+    /// A conductor's reflectance: a named metal, `eta` and `k`, or a perfect mirror.
+    fn conductor_fresnel(&mut self, m: &MaterialDef, path: &DocPath) -> ConductorFresnel {
+        let index =
+            |b: &mut Self, c: Option<ColorDef>, key: &str| c.map(|c| b.color(c, &path.key(key)));
+        match (&m.metal, index(self, m.eta, "eta"), index(self, m.k, "k")) {
+            (Some(name), None, None) => match metals::named(name) {
+                Some((eta, k)) => ConductorFresnel::Complex { eta, k },
+                None => {
+                    let known = ["Au", "Ag", "Cu", "Al"];
+                    let help = match did_you_mean(name, known) {
+                        Some(s) => format!("did you mean `{s}`?"),
+                        None => format!("snell knows {}", known.join(", ")),
+                    };
+                    self.error_help(path.key("metal"), format!("no metal named `{name}`"), help);
+                    ConductorFresnel::One
+                }
+            },
+            (Some(_), _, _) => {
+                self.error_help(
+                    path.key("metal"),
+                    "a conductor takes `metal` or `eta` and `k`, not both",
+                    "remove `metal`, or `eta` and `k`",
+                );
+                ConductorFresnel::One
+            }
+            (None, Some(eta), Some(k)) => ConductorFresnel::Complex { eta, k },
+            (None, None, None) => ConductorFresnel::One,
+            (None, eta, _) => {
+                let missing = if eta.is_some() { "k" } else { "eta" };
+                self.error_help(
+                    path.key(if eta.is_some() { "eta" } else { "k" }),
+                    format!("a conductor's index needs both `eta` and `k`; `{missing}` is missing"),
+                    format!("add `{missing} = [r, g, b]`, or name a metal with `metal = \"Au\"`"),
+                );
+                ConductorFresnel::One
+            }
+        }
+    }
+}

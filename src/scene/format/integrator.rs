@@ -1,0 +1,54 @@
+//! `[integrator]`: which integrator turns rays into colours, and the path tracer's settings.
+
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+
+/// `[integrator]`.
+#[derive(Debug, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields, default)]
+pub struct IntegratorDef {
+    /// `whitted` (the seed report's ray tracer, the default) or `path` (physically based).
+    #[serde(rename = "type")]
+    pub kind: IntegratorKind,
+    /// Path: where the random numbers come from, `sobol` (default) or `independent`.
+    pub sampler: SamplerDef,
+    /// Path: the depth (segments, the camera ray is 1) from which Russian roulette may end
+    /// a path (default 5, as Mitsuba).
+    pub rr_depth: u32,
+    /// Path: the largest value a sample may add to a pixel, per channel (default: no clamp).
+    /// Clamping removes fireflies and darkens the image: it is biased.
+    pub clamp: Option<f32>,
+}
+
+impl Default for IntegratorDef {
+    fn default() -> Self {
+        IntegratorDef {
+            kind: IntegratorKind::Whitted,
+            sampler: SamplerDef::Sobol,
+            rr_depth: 5,
+            clamp: None,
+        }
+    }
+}
+
+/// The integrators.
+#[derive(Clone, Copy, Debug, Default, Deserialize, Serialize, JsonSchema, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub enum IntegratorKind {
+    /// Whitted-style ray tracing: point lights, mirror reflection and refraction.
+    #[default]
+    Whitted,
+    /// Unidirectional path tracing with next-event estimation and MIS.
+    Path,
+}
+
+/// The samplers of the path tracer.
+#[derive(Clone, Copy, Debug, Default, Deserialize, Serialize, JsonSchema, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub enum SamplerDef {
+    /// Owen-scrambled Sobol points.
+    #[default]
+    Sobol,
+    /// Independent uniform numbers.
+    Independent,
+}

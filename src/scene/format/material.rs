@@ -1,0 +1,163 @@
+//! `[materials.NAME]`: one table for every type of material, its `type` saying how the
+//! keys are read. Which keys each type takes is checked when the scene is built (a key
+//! another type reads is an error at its line), so the file stays one plain table that
+//! TOML, JSON and the schema all read alike.
+
+use super::{ColorDef, RoughnessDef};
+use schemars::JsonSchema;
+use serde::{Deserialize, Serialize};
+
+/// The types of material. docs/scene-format.md says how each is read by each integrator.
+#[derive(Clone, Copy, Debug, Default, Deserialize, Serialize, JsonSchema, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub enum MaterialKind {
+    /// The seed report's Phong terms (the default): ambient, diffuse, a highlight, mirror
+    /// reflection and refraction by weight. The path tracer reads it as a documented mix of
+    /// diffuse, plastic, mirror and glass.
+    #[default]
+    Phong,
+    /// Lambertian: the same radiance seen from every direction.
+    Diffuse,
+    /// A metal, smooth or rough (GGX), from a named metal's measured index or `eta` and `k`.
+    Conductor,
+    /// Glass or water, smooth or rough, with Beer-Lambert absorption inside.
+    Dielectric,
+    /// A thin pane of glass: reflects and lets light through without bending it.
+    Thin,
+    /// A diffuse base under a clear dielectric coat, smooth or rough.
+    Plastic,
+}
+
+impl MaterialKind {
+    /// The name the file gives the type.
+    pub fn name(self) -> &'static str {
+        match self {
+            MaterialKind::Phong => "phong",
+            MaterialKind::Diffuse => "diffuse",
+            MaterialKind::Conductor => "conductor",
+            MaterialKind::Dielectric => "dielectric",
+            MaterialKind::Thin => "thin",
+            MaterialKind::Plastic => "plastic",
+        }
+    }
+
+    /// All types, in the order the documentation gives them.
+    pub const ALL: [MaterialKind; 6] = [
+        MaterialKind::Phong,
+        MaterialKind::Diffuse,
+        MaterialKind::Conductor,
+        MaterialKind::Dielectric,
+        MaterialKind::Thin,
+        MaterialKind::Plastic,
+    ];
+}
+
+/// `[materials.NAME]`.
+#[derive(Debug, Default, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct MaterialDef {
+    /// How the other keys are read: `phong` (default), `diffuse`, `conductor`,
+    /// `dielectric`, `thin` or `plastic`.
+    #[serde(rename = "type", default)]
+    pub kind: MaterialKind,
+    /// Surface colour, linear RGB (or use `texture`): the Phong colour, the diffuse
+    /// reflectance of `diffuse` and `plastic`, a tint on a `conductor`'s reflection. Default 1.
+    pub color: Option<ColorDef>,
+    /// Name of a texture giving `color`.
+    pub texture: Option<String>,
+    /// Phong: ambient coefficient (default 1).
+    pub ambient: Option<f32>,
+    /// Phong: diffuse coefficient (default 0.8).
+    pub diffuse: Option<f32>,
+    /// Phong: highlight colour (default 0, none).
+    pub specular: Option<ColorDef>,
+    /// Phong: highlight exponent, larger is sharper (default 50).
+    pub shininess: Option<f32>,
+    /// Phong: mirror weight in [0, 1] (default 0).
+    pub reflectivity: Option<f32>,
+    /// Phong: transmitted fraction in [0, 1] (default 0).
+    pub transparency: Option<f32>,
+    /// Index of refraction of the inside (phong, dielectric, thin) or of the coat
+    /// (plastic); default 1.5.
+    pub ior: Option<f32>,
+    /// Beer-Lambert absorption per scene unit travelled inside, per channel (phong,
+    /// dielectric); default 0.
+    pub absorption: Option<ColorDef>,
+    /// GGX roughness alpha (Mitsuba's `alpha`; Blender's roughness r is alpha = r^2), a
+    /// number or the name of a texture (its mean of r, g, b): 0 is smooth (conductor,
+    /// dielectric, plastic; default 0).
+    pub roughness: Option<RoughnessDef>,
+    /// Conductor: a named metal, `Au`, `Ag`, `Cu` or `Al` (or give `eta` and `k`; with
+    /// neither the conductor is a perfect mirror).
+    pub metal: Option<String>,
+    /// Conductor: real part of the complex index of refraction, per channel.
+    pub eta: Option<ColorDef>,
+    /// Conductor: imaginary part (extinction) of the index, per channel.
+    pub k: Option<ColorDef>,
+    /// Light the surface gives off, linear RGB radiance (any type; default none). An
+    /// emitting shape is an area light to the path tracer.
+    pub emission: Option<ColorDef>,
+    /// Whether `emission` leaves both sides (default: the front side only).
+    pub two_sided: Option<bool>,
+}
+
+/// A key of [`MaterialDef`], for checking which type reads it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum MaterialKey {
+    /// `color` or `texture`.
+    Color,
+    /// Phong's own terms.
+    Phong,
+    /// `ior`.
+    Ior,
+    /// `absorption`.
+    Absorption,
+    /// `roughness`.
+    Roughness,
+    /// `metal`, `eta`, `k`.
+    Metal,
+}
+
+impl MaterialKind {
+    /// Whether this type reads keys of the kind `key`.
+    pub fn reads(self, key: MaterialKey) -> bool {
+        use MaterialKey as K;
+        use MaterialKind as M;
+        match key {
+            K::Color => matches!(self, M::Phong | M::Diffuse | M::Conductor | M::Plastic),
+            K::Phong => self == M::Phong,
+            K::Ior => matches!(self, M::Phong | M::Dielectric | M::Thin | M::Plastic),
+            K::Absorption => matches!(self, M::Phong | M::Dielectric),
+            K::Roughness => matches!(self, M::Conductor | M::Dielectric | M::Plastic),
+            K::Metal => self == M::Conductor,
+        }
+    }
+}
+
+impl MaterialDef {
+    /// The keys given, each with its kind, as the file spells them.
+    pub fn given(&self) -> Vec<(&'static str, MaterialKey)> {
+        use MaterialKey as K;
+        let mut out = vec![];
+        let mut add = |given: bool, name, key| {
+            if given {
+                out.push((name, key));
+            }
+        };
+        add(self.color.is_some(), "color", K::Color);
+        add(self.texture.is_some(), "texture", K::Color);
+        add(self.ambient.is_some(), "ambient", K::Phong);
+        add(self.diffuse.is_some(), "diffuse", K::Phong);
+        add(self.specular.is_some(), "specular", K::Phong);
+        add(self.shininess.is_some(), "shininess", K::Phong);
+        add(self.reflectivity.is_some(), "reflectivity", K::Phong);
+        add(self.transparency.is_some(), "transparency", K::Phong);
+        add(self.ior.is_some(), "ior", K::Ior);
+        add(self.absorption.is_some(), "absorption", K::Absorption);
+        add(self.roughness.is_some(), "roughness", K::Roughness);
+        add(self.metal.is_some(), "metal", K::Metal);
+        add(self.eta.is_some(), "eta", K::Metal);
+        add(self.k.is_some(), "k", K::Metal);
+        out
+    }
+}
