@@ -14,7 +14,7 @@ use super::RayStats;
 use crate::bsdf::{Bsdf, BsdfSample};
 use crate::light::Falloff;
 use crate::math::distribution::power_heuristic;
-use crate::math::{Color, Frame, Ray, Vec3A, offset_ray_origin};
+use crate::math::{Color, Frame, Ray, Vec2, Vec3A, offset_ray_origin};
 use crate::sampler::Sampler;
 use crate::scene::{Hit, Scene};
 
@@ -91,14 +91,17 @@ impl Path {
                 frame,
                 ng: hit.normal,
             };
-            // Both strategies' numbers are drawn whether used or not, so that each bounce
-            // takes the same dimensions of the sampler.
-            let (uc, ul) = (sampler.next_1d(), sampler.next_2d());
+            // One request of four dimensions per bounce, drawn whether used or not, so that
+            // each bounce takes the same dimensions: the BSDF's direction and a point on a
+            // light; the choices (light, lobe, Russian roulette) are the sampler's
+            // independent ones.
+            let [b0, b1, l0, l1] = sampler.next_4d();
+            let (u, ul) = (Vec2::new(b0, b1), Vec2::new(l0, l1));
             if v.bsdf.has_non_delta() {
+                let uc = sampler.next_choice();
                 l += beta * self.light_sample(scene, &hit, &v, uc, ul, rays);
             }
-            let (uc, u) = (sampler.next_1d(), sampler.next_2d());
-            let ur = sampler.next_1d();
+            let uc = sampler.next_choice();
             let Some(bs) = v.bsdf.sample(v.wo, u, uc) else {
                 break;
             };
@@ -125,7 +128,7 @@ impl Path {
             rays.secondary += 1;
             if depth > settings.rr_depth + 1 {
                 let q = ((beta * eta_scale).max_element()).min(0.95);
-                if ur >= q {
+                if sampler.next_choice() >= q {
                     break;
                 }
                 beta /= q;
@@ -168,7 +171,7 @@ impl Path {
         hit: &Hit,
         v: &Vertex,
         uc: f32,
-        ul: crate::math::Vec2,
+        ul: Vec2,
         rays: &mut RayStats,
     ) -> Color {
         let Some(c) = scene.light_sampler.sample(

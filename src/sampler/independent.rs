@@ -33,4 +33,14 @@ impl Independent {
     pub fn next_2d(&mut self) -> Vec2 {
         Vec2::new(self.rng.next_f32(), self.rng.next_f32())
     }
+
+    /// A number for a discrete choice: the next number.
+    pub fn next_choice(&mut self) -> f32 {
+        self.rng.next_f32()
+    }
+
+    /// The next four numbers.
+    pub fn next_4d(&mut self) -> [f32; 4] {
+        std::array::from_fn(|_| self.rng.next_f32())
+    }
 }

@@ -62,6 +62,26 @@ impl Sampler {
             Sampler::Sobol(s) => s.next_2d(),
         }
     }
+
+    /// A number in `[0, 1)` for a discrete choice (which light, which lobe, whether Russian
+    /// roulette ends the path), which gains little from stratification: Sobol hands out
+    /// independent numbers here, at a quarter of a dimension's cost; it takes no dimension.
+    pub fn next_choice(&mut self) -> f32 {
+        match self {
+            Sampler::Independent(s) => s.next_choice(),
+            Sampler::Sobol(s) => s.next_choice(),
+        }
+    }
+
+    /// The next four numbers, each in `[0, 1)`, taken together: the first two a pair as
+    /// [`Sampler::next_2d`]'s (a direction), the others for choices (a lobe, a light,
+    /// Russian roulette).
+    pub fn next_4d(&mut self) -> [f32; 4] {
+        match self {
+            Sampler::Independent(s) => s.next_4d(),
+            Sampler::Sobol(s) => s.next_4d(),
+        }
+    }
 }
 
 #[cfg(test)]
