@@ -432,3 +432,90 @@ fn a_render_of_days_is_told_so_before_it_starts() {
     let scene = write_scene(&dir, "s.toml", GOOD);
     assert!(!stderr(&expect(&["render", &scene, "--spp", "64"], &dir, 0)).contains("will take"));
 }
+
+/// `--integrator`, `--sampler` and `--clamp`: the path tracer renders any sample count,
+/// bad names and values are told what to give, and `explain` says it follows Whitted only.
+#[test]
+fn integrator_flags_choose_the_path_tracer_and_refuse_bad_values() {
+    let dir = scratch("integrator-flags");
+    let scene = write_scene(&dir, "s.toml", GOOD);
+    // Five samples: not a square, which only the path tracer takes.
+    let o = expect(
+        &[
+            "render",
+            &scene,
+            "--integrator",
+            "path",
+            "--spp",
+            "5",
+            "--sampler",
+            "independent",
+            "--clamp",
+            "4",
+            "-o",
+            "p.png",
+        ],
+        &dir,
+        0,
+    );
+    assert!(stdout(&o).contains("5 spp"), "{}", stdout(&o));
+    assert!(dir.join("p.png").exists());
+    let o = expect(&["render", &scene, "--spp", "5", "-o", "w.png"], &dir, 2);
+    assert!(stderr(&o).contains("square"), "{}", stderr(&o));
+    let cases: [(&[&str], &str); 4] = [
+        (&["--integrator", "pathh"], "use whitted or path"),
+        (&["--sampler", "halton"], "use sobol or independent"),
+        (&["--clamp", "-1"], "positive number"),
+        (&["--clamp", "inf"], "positive number"),
+    ];
+    for (flags, message) in cases {
+        let mut args = vec!["render", scene.as_str(), "-o", "x.png"];
+        args.extend_from_slice(flags);
+        let o = expect(&args, &dir, 2);
+        assert!(stderr(&o).contains(message), "{flags:?}: {}", stderr(&o));
+    }
+    assert!(!dir.join("x.png").exists());
+    let o = expect(
+        &["explain", &scene, "--pixel", "3,3", "--integrator", "path"],
+        &dir,
+        2,
+    );
+    assert!(
+        stderr(&o).contains("--integrator whitted"),
+        "{}",
+        stderr(&o)
+    );
+}
+
+/// `[integrator] type = "path"` in the file chooses the path tracer (an emitting rectangle
+/// lights the scene, which Whitted would only show as a glowing patch), and a bad value in
+/// the table is reported at its line.
+#[test]
+fn the_scene_file_chooses_the_integrator() {
+    let dir = scratch("integrator-table");
+    let bad = write_scene(
+        &dir,
+        "bad.toml",
+        "[integrator]\ntype = \"path\"\nsampler = \"halton\"\n[camera]\nlook_at = [0, 0, -1]\n",
+    );
+    let o = expect(&["render", &bad, "-o", "b.png"], &dir, 2);
+    assert!(stderr(&o).contains("bad.toml:3"), "{}", stderr(&o));
+    let cornell = repo("scenes/cornell.toml");
+    let o = expect(
+        &[
+            "render",
+            cornell.to_str().unwrap(),
+            "--width",
+            "16",
+            "--height",
+            "16",
+            "--spp",
+            "3",
+            "-o",
+            "c.exr",
+        ],
+        &dir,
+        0,
+    );
+    assert!(stdout(&o).contains("3 spp"), "{}", stdout(&o));
+}

@@ -8,6 +8,7 @@ mod docs;
 mod explain;
 mod meshes;
 mod optics;
+mod path;
 mod properties;
 mod renders;
 mod robustness;

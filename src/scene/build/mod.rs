@@ -558,9 +558,16 @@ impl Builder<'_> {
                 .push("the scene has no objects: the image will be the background".into());
         }
         let emits = materials.iter().any(|m| m.emission.is_some());
-        if lights.is_empty() && !emits {
+        // The path tracer is lit by the background too (a uniform environment).
+        let path = settings.integrator.kind == IntegratorKind::Path;
+        if lights.is_empty() && !emits && !path {
             self.warnings
                 .push("the scene has no lights: only ambient light will show".into());
+        } else if lights.is_empty() && !emits && background == Color::ZERO {
+            self.warnings.push(
+                "the scene has no lights and a black background: the path tracer's image will be black"
+                    .into(),
+            );
         }
         for (li, l) in lights.iter().enumerate() {
             if let Some(p) = l.position() {

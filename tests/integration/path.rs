@@ -1,0 +1,272 @@
+//! The path tracer proven on scenes with known answers: white furnaces (a convex object
+//! under a uniform environment of radiance 1, whose every pixel must come out as the
+//! environment or, for surfaces that lose energy, just under it), pbrt's closed emitting
+//! sphere, and the Cornell box against a stored reference made by snell itself (a per-pixel
+//! z-test), with the Sobol and the independent sampler agreeing.
+
+use super::repo;
+use snell::film::Image;
+use snell::integrator::Path as PathTracer;
+use snell::math::Color;
+use snell::render::render;
+use snell::sampler::SamplerKind;
+use snell::scene::{Format, load_str};
+use std::path::Path;
+
+/// Renders a scene given as TOML text with the path tracer.
+fn render_text(text: &str) -> Image {
+    let scene = load_str(text, Path::new("t.toml"), Path::new("."), Format::Toml)
+        .unwrap_or_else(|e| panic!("{e}"));
+    assert!(scene.warnings.is_empty(), "{:?}", scene.warnings);
+    render(&scene, &PathTracer, Some(2), &|_| {}).unwrap().image
+}
+
+/// A sphere of `material` (TOML keys) in a uniform environment of radiance 1, seen from 4
+/// units away through a field of view of `fov` degrees (25: the whole sphere and some
+/// environment around it; 2: only the middle of the sphere, seen head-on).
+fn furnace(material: &str, spp: u32, fov: f32) -> Image {
+    render_text(&format!(
+        "[image]\nwidth = 12\nheight = 12\nsamples = {spp}\nbackground = 1\nmax_depth = 64\n\
+         [integrator]\ntype = \"path\"\n\
+         [camera]\nposition = [0, 0, 4]\nlook_at = [0, 0, 0]\nfov = {fov}\n\
+         [materials.m]\n{material}\n\
+         [[objects]]\ntype = \"sphere\"\nradius = 1\nmaterial = \"m\"\n"
+    ))
+}
+
+fn mean(img: &Image) -> Color {
+    img.pixels.iter().copied().sum::<Color>() / img.pixels.len() as f32
+}
+
+/// A white Lambertian sphere returns every bit of the environment it is lit by: each path
+/// bounces once, with weight exactly 1, and leaves; every pixel is 1 to rounding.
+#[test]
+fn white_furnace_diffuse() {
+    let img = furnace("type = \"diffuse\"\ncolor = 1", 16, 25.0);
+    for (i, p) in img.pixels.iter().enumerate() {
+        assert!(
+            (*p - Color::ONE).abs().max_element() < 1e-4,
+            "pixel {i}: {p}"
+        );
+    }
+    // A grey one returns its albedo.
+    let img = furnace("type = \"diffuse\"\ncolor = 0.5", 16, 25.0);
+    // The corners see the environment (1), the middle the sphere (0.5).
+    let centre = img.pixels[(6 * 12 + 6) as usize];
+    assert!(
+        (centre - Color::splat(0.5)).abs().max_element() < 1e-4,
+        "{centre}"
+    );
+}
+
+/// Smooth glass without absorption loses nothing: light is split between reflection and
+/// refraction, concentrated going in and spread coming out, and all of it leaves again. The
+/// image converges to 1 (Russian roulette and depth 64 add noise and a negligible loss).
+#[test]
+fn white_furnace_smooth_and_rough_dielectric() {
+    let img = furnace("type = \"dielectric\"\nior = 1.5", 64, 25.0);
+    let m = mean(&img);
+    assert!(
+        (m - Color::ONE).abs().max_element() < 0.01,
+        "smooth glass: {m}"
+    );
+    for (i, p) in img.pixels.iter().enumerate() {
+        assert!(
+            (*p - Color::ONE).abs().max_element() < 0.1,
+            "pixel {i}: {p}"
+        );
+    }
+    // A rough one loses what single-scattering microfacets lose (light that would bounce
+    // between facets) at each of the crossings a path makes: never a gain, and at this
+    // roughness less than a tenth.
+    let m = mean(&furnace(
+        "type = \"dielectric\"\nior = 1.5\nroughness = 0.1",
+        64,
+        25.0,
+    ));
+    assert!(
+        m.max_element() < 1.005 && m.min_element() > 0.9,
+        "rough glass: {m}"
+    );
+}
+
+/// The directional albedo at normal incidence of a GGX conductor with Fresnel 1, by
+/// sampling the BSDF on its own (the scene-free answer the furnace must reproduce).
+fn rough_mirror_albedo(alpha: f32) -> f32 {
+    use snell::bsdf::{Bsdf, Conductor, ConductorFresnel, microfacet::Ggx};
+    let b = Bsdf::Conductor(Conductor {
+        fresnel: ConductorFresnel::One,
+        distribution: Ggx::isotropic(alpha),
+        tint: Color::ONE,
+    });
+    let mut rng = snell::math::Rng::new(3);
+    let n = 1 << 20;
+    let mut sum = 0.0f64;
+    for _ in 0..n {
+        let u = snell::math::Vec2::new(rng.next_f32(), rng.next_f32());
+        if let Some(s) = b.sample(snell::math::Vec3A::Z, u, 0.5) {
+            sum += (s.f.x * s.wi.z / s.pdf) as f64;
+        }
+    }
+    (sum / n as f64) as f32
+}
+
+/// A rough conductor whose Fresnel term is 1 (no `metal`, no `eta` and `k`) reflects all
+/// but the energy single-scattering GGX loses between facets. Seen head-on through a narrow
+/// field of view, every pixel is the BSDF's albedo at normal incidence (each path bounces
+/// once off the convex sphere and leaves); smooth, it is a perfect mirror, exactly 1.
+#[test]
+fn white_furnace_rough_conductor() {
+    for alpha in [0.1f32, 0.3] {
+        let want = rough_mirror_albedo(alpha);
+        assert!(want < 1.0 && want > 0.8, "alpha {alpha}: {want}");
+        let img = furnace(
+            &format!("type = \"conductor\"\nroughness = {alpha}"),
+            256,
+            2.0,
+        );
+        for (i, p) in img.pixels.iter().enumerate() {
+            assert!(
+                (*p - Color::splat(want)).abs().max_element() < 0.01,
+                "alpha {alpha}, pixel {i}: {p}, the albedo {want}"
+            );
+        }
+    }
+    let img = furnace("type = \"conductor\"", 4, 25.0);
+    for (i, p) in img.pixels.iter().enumerate() {
+        assert!(
+            (*p - Color::ONE).abs().max_element() < 1e-4,
+            "pixel {i}: {p}"
+        );
+    }
+}
+
+/// pbrt's closed sphere: seen from inside, a sphere of albedo 0.5 emitting 0.5 shows
+/// 0.5 (1 + 0.5 + 0.25 + ...) = 1 everywhere. Light sampling (the sphere is an area light,
+/// sampled by area from inside) and BSDF sampling both find the emission, so this tests
+/// their MIS weights summing to one.
+#[test]
+fn closed_sphere_sees_exactly_one() {
+    let img = render_text(
+        "[image]\nwidth = 8\nheight = 8\nsamples = 64\nbackground = 0\nmax_depth = 64\n\
+         [integrator]\ntype = \"path\"\n\
+         [camera]\nposition = [0, 0, 0]\nlook_at = [0, 0, -1]\nfov = 60\n\
+         [materials.m]\ntype = \"diffuse\"\ncolor = 0.5\nemission = 0.5\ntwo_sided = true\n\
+         [[objects]]\ntype = \"sphere\"\nradius = 1\nmaterial = \"m\"\n",
+    );
+    let m = mean(&img);
+    assert!((m - Color::ONE).abs().max_element() < 0.01, "{m}");
+    for (i, p) in img.pixels.iter().enumerate() {
+        assert!(
+            (*p - Color::ONE).abs().max_element() < 0.06,
+            "pixel {i}: {p}"
+        );
+    }
+}
+
+/// The Cornell box (scenes/cornell.toml, the same as Mitsuba's) at 32 x 32.
+fn cornell(spp: u32, seed: u64, sampler: SamplerKind) -> Image {
+    let mut scene = snell::scene::load(&repo("scenes/cornell.toml")).unwrap();
+    let s = &mut scene.settings;
+    (s.width, s.height, s.spp, s.seed) = (32, 32, spp, seed);
+    s.integrator.sampler = sampler;
+    render(&scene, &PathTracer, Some(2), &|_| {}).unwrap().image
+}
+
+/// tests/data/cornell-32-ref.exr: the Cornell box at 32 x 32, 65536 samples per pixel of the
+/// independent sampler, made by
+/// `snell render scenes/cornell.toml --width 32 --height 32 --spp 65536 --sampler independent --seed 1000 -o tests/data/cornell-32-ref.exr`.
+fn cornell_reference() -> Vec<[f32; 3]> {
+    let img = image::open(repo("tests/data/cornell-32-ref.exr"))
+        .expect("the stored Cornell reference")
+        .to_rgb32f();
+    assert_eq!((img.width(), img.height()), (32, 32));
+    img.pixels().map(|p| p.0).collect()
+}
+
+/// Sixteen independent renders of the Cornell box give each pixel a mean and a standard
+/// error; against the stored reference, each channel's z-score must be what noise alone
+/// gives: only a handful beyond 4, none beyond 8, and no shift of their mean (a bias of a
+/// few percent anywhere in the image fails this).
+#[test]
+fn cornell_box_agrees_per_pixel_with_its_reference() {
+    const K: usize = 16;
+    let reference = cornell_reference();
+    let renders: Vec<Image> = (0..K)
+        .map(|k| cornell(64, k as u64, SamplerKind::Independent))
+        .collect();
+    let (mut z_sum, mut z_count, mut beyond4, mut worst) = (0.0f64, 0usize, 0usize, 0.0f64);
+    for (i, want) in reference.iter().enumerate() {
+        for c in 0..3 {
+            let v: Vec<f64> = renders
+                .iter()
+                .map(|r| r.pixels[i].to_array()[c] as f64)
+                .collect();
+            let m = v.iter().sum::<f64>() / K as f64;
+            let var = v.iter().map(|x| (x - m).powi(2)).sum::<f64>() / (K - 1) as f64;
+            let want = want[c] as f64;
+            if var == 0.0 {
+                // Outside the box, and inside the light: the same in every sample.
+                assert!(
+                    (m - want).abs() <= 1e-4 * want.max(1.0),
+                    "pixel {i}: {m} vs {want}"
+                );
+                continue;
+            }
+            let z = (m - want) / (var / K as f64).sqrt();
+            z_sum += z;
+            z_count += 1;
+            beyond4 += (z.abs() > 4.0) as usize;
+            worst = worst.max(z.abs());
+        }
+    }
+    let z_mean = z_sum / z_count as f64;
+    assert!(z_count > 2500, "{z_count} noisy values");
+    assert!(
+        beyond4 <= z_count / 100 && worst < 8.0 && z_mean.abs() < 0.15,
+        "{beyond4} of {z_count} beyond 4, worst {worst:.2}, mean z {z_mean:.3}"
+    );
+}
+
+/// The Sobol and the independent sampler estimate the same image: their means over the
+/// Cornell box agree within their noise, and Sobol's error against the reference is the
+/// smaller at the same sample count.
+#[test]
+fn sobol_and_independent_agree() {
+    let reference = cornell_reference();
+    let rmse = |img: &Image| {
+        let sum: f64 = img
+            .pixels
+            .iter()
+            .zip(&reference)
+            .map(|(p, r)| {
+                (0..3)
+                    .map(|c| (p.to_array()[c] as f64 - r[c] as f64).powi(2))
+                    .sum::<f64>()
+            })
+            .sum();
+        (sum / (3 * reference.len()) as f64).sqrt()
+    };
+    let sobol = cornell(256, 1, SamplerKind::Sobol);
+    let independent = cornell(256, 1, SamplerKind::Independent);
+    let (ms, mi) = (mean(&sobol), mean(&independent));
+    assert!(
+        ((ms - mi).abs() / mi).max_element() < 0.01,
+        "Sobol {ms}, independent {mi}"
+    );
+    let (es, ei) = (rmse(&sobol), rmse(&independent));
+    assert!(es < ei, "RMSE Sobol {es}, independent {ei}");
+}
+
+/// Any number of samples per pixel, and the same bytes at any thread count.
+#[test]
+fn any_sample_count_and_the_same_image_at_any_thread_count() {
+    let mut scene = snell::scene::load(&repo("scenes/cornell.toml")).unwrap();
+    let s = &mut scene.settings;
+    (s.width, s.height, s.spp) = (20, 12, 7);
+    let one = render(&scene, &PathTracer, Some(1), &|_| {}).unwrap();
+    let two = render(&scene, &PathTracer, Some(2), &|_| {}).unwrap();
+    assert_eq!(one.image.pixels, two.image.pixels);
+    assert_eq!(one.rays.camera, 20 * 12 * 7);
+    assert_eq!(one.bad_samples.count, 0);
+}
