@@ -121,6 +121,20 @@ impl Bsdf {
 }
 
 impl Bsdf {
+    /// The variant's name, for `snell explain`.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Bsdf::Lambert(_) => "lambert",
+            Bsdf::Conductor(b) if b.distribution.is_smooth() => "smooth conductor",
+            Bsdf::Conductor(_) => "rough conductor",
+            Bsdf::Dielectric(b) if b.distribution.is_smooth() => "smooth dielectric",
+            Bsdf::Dielectric(_) => "rough dielectric",
+            Bsdf::ThinDielectric(_) => "thin dielectric",
+            Bsdf::Plastic(_) => "plastic",
+            Bsdf::Phong(_) => "phong mix",
+        }
+    }
+
     /// Whether some of its scattering is not a delta, so that light sampling can reach it.
     pub fn has_non_delta(&self) -> bool {
         match self {

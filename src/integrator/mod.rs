@@ -4,6 +4,7 @@
 pub mod aov;
 pub mod explain;
 mod path;
+pub mod path_explain;
 mod whitted;
 
 pub use path::Path;

@@ -11,6 +11,10 @@
 //! Beer-Lambert; Whitted's ambient term and fog are not read.
 
 use super::RayStats;
+use super::path_explain::{
+    BounceRecord, EmissionRecord, LightSampleRecord, NoPathRecord, PathEnd, PathRecorder,
+    RouletteRecord, VertexRecord,
+};
 use crate::bsdf::{Bsdf, BsdfSample};
 use crate::light::Falloff;
 use crate::math::distribution::power_heuristic;
@@ -40,12 +44,25 @@ struct Vertex {
 impl Path {
     /// The radiance arriving along the camera ray `ray`, with random numbers from
     /// `sampler` (started at this sample).
+    #[inline]
     pub fn radiance(
         &self,
         scene: &Scene,
         ray: &Ray,
         sampler: &mut Sampler,
         rays: &mut RayStats,
+    ) -> Color {
+        self.trace(scene, ray, sampler, rays, &mut NoPathRecord)
+    }
+
+    /// [`Path::radiance`], reporting the path to `rec` (`snell explain`).
+    pub fn trace<R: PathRecorder>(
+        &self,
+        scene: &Scene,
+        ray: &Ray,
+        sampler: &mut Sampler,
+        rays: &mut RayStats,
+        rec: &mut R,
     ) -> Color {
         let settings = &scene.settings.integrator;
         let max_depth = scene.settings.max_depth;
@@ -64,7 +81,13 @@ impl Path {
         loop {
             rays.deepest = rays.deepest.max(depth);
             let Some(hit) = scene.closest_hit_skipping(&ray, f32::INFINITY, skip) else {
-                l += beta * scene.background;
+                let c = beta * scene.background;
+                l += c;
+                if R::ACTIVE {
+                    rec.end(PathEnd::Escaped {
+                        contribution: c.to_array(),
+                    });
+                }
                 break;
             };
             if let Some(sigma) = medium {
@@ -72,15 +95,41 @@ impl Path {
             }
             let m = scene.material_at(&hit);
             let front = ray.dir.dot(hit.normal) < 0.0;
+            let mut record = R::ACTIVE.then(|| VertexRecord {
+                depth,
+                object: scene.objects[hit.object].name.clone(),
+                material: scene.material_names[hit.material].clone(),
+                point: hit.point.to_array(),
+                front,
+                throughput: beta.to_array(),
+                ..Default::default()
+            });
+            let mut added = Color::ZERO;
             if let Some(e) = &m.emission {
                 let le = e.emitted(front);
                 if le != Color::ZERO {
-                    l += beta
-                        * le
-                        * self.emitter_weight(scene, &hit, specular, prev_pdf, prev_point);
+                    let (w, light_pdf) =
+                        self.emitter_weight(scene, &hit, specular, prev_pdf, prev_point);
+                    let c = beta * le * w;
+                    added += c;
+                    if let Some(r) = &mut record {
+                        r.emission = Some(EmissionRecord {
+                            radiance: le.to_array(),
+                            mis_weight: w,
+                            light_pdf,
+                            contribution: c.to_array(),
+                        });
+                    }
                 }
             }
             if depth >= max_depth {
+                l += added;
+                if let Some(mut r) = record {
+                    r.bsdf = "none (max_depth reached)".into();
+                    r.contribution = added.to_array();
+                    rec.vertex(r);
+                    rec.end(PathEnd::MaxDepth);
+                }
                 break;
             }
             let base = scene.textures[m.texture].eval(&hit.tex);
@@ -91,6 +140,9 @@ impl Path {
                 frame,
                 ng: hit.normal,
             };
+            if let Some(r) = &mut record {
+                r.bsdf = v.bsdf.name().into();
+            }
             // One request of four dimensions per bounce, drawn whether used or not, so that
             // each bounce takes the same dimensions: the BSDF's direction and a point on a
             // light; the choices (light, lobe, Russian roulette) are the sampler's
@@ -99,17 +151,47 @@ impl Path {
             let (u, ul) = (Vec2::new(b0, b1), Vec2::new(l0, l1));
             if v.bsdf.has_non_delta() {
                 let uc = sampler.next_choice();
-                l += beta * self.light_sample(scene, &hit, &v, uc, ul, rays);
+                let (c, lr) = self.light_sample::<R>(scene, &hit, &v, uc, ul, rays);
+                let c = beta * c;
+                added += c;
+                if let (Some(r), Some(mut lr)) = (&mut record, lr) {
+                    lr.contribution = c.to_array();
+                    r.light = Some(lr);
+                }
+            }
+            l += added;
+            if let Some(r) = &mut record {
+                r.contribution = added.to_array();
             }
             let uc = sampler.next_choice();
-            let Some(bs) = v.bsdf.sample(v.wo, u, uc) else {
+            let sampled = v
+                .bsdf
+                .sample(v.wo, u, uc)
+                .and_then(|bs| Some((bs, self.continue_from(&v, &bs)?)));
+            let Some((bs, (dir, through))) = sampled else {
+                if let Some(r) = record {
+                    rec.vertex(r);
+                    rec.end(PathEnd::Absorbed);
+                }
                 break;
             };
-            let Some((dir, through)) = self.continue_from(&v, &bs) else {
-                break;
-            };
-            beta *= bs.f * (bs.wi.z.abs() / bs.pdf);
+            let weight = bs.f * (bs.wi.z.abs() / bs.pdf);
+            beta *= weight;
+            if let Some(r) = &mut record {
+                r.bounce = Some(BounceRecord {
+                    lobe: format!("{:?}", bs.lobe),
+                    direction: dir.to_array(),
+                    pdf: bs.pdf,
+                    f: bs.f.to_array(),
+                    cos: bs.wi.z.abs(),
+                    weight: weight.to_array(),
+                });
+            }
             if !beta.is_finite() || beta == Color::ZERO {
+                if let Some(r) = record {
+                    rec.vertex(r);
+                    rec.end(PathEnd::Absorbed);
+                }
                 break;
             }
             eta_scale *= v.bsdf.radiance_scale(v.wo, bs.wi);
@@ -128,10 +210,24 @@ impl Path {
             rays.secondary += 1;
             if depth > settings.rr_depth + 1 {
                 let q = ((beta * eta_scale).max_element()).min(0.95);
-                if sampler.next_choice() >= q {
+                let survived = sampler.next_choice() < q;
+                if let Some(r) = &mut record {
+                    r.roulette = Some(RouletteRecord {
+                        survival: q,
+                        survived,
+                    });
+                }
+                if !survived {
+                    if let Some(r) = record {
+                        rec.vertex(r);
+                        rec.end(PathEnd::Roulette);
+                    }
                     break;
                 }
                 beta /= q;
+            }
+            if let Some(r) = record {
+                rec.vertex(r);
             }
         }
         match settings.clamp {
@@ -141,7 +237,8 @@ impl Path {
     }
 
     /// The MIS weight of emission found by a BSDF sample from `prev_point` with density
-    /// `prev_pdf`: 1 after a delta bounce or for emitters light sampling never picks.
+    /// `prev_pdf`: 1 after a delta bounce or for emitters light sampling never picks; with
+    /// light sampling's density for the direction where it counts.
     fn emitter_weight(
         &self,
         scene: &Scene,
@@ -149,23 +246,23 @@ impl Path {
         specular: bool,
         prev_pdf: f32,
         prev_point: Vec3A,
-    ) -> f32 {
+    ) -> (f32, Option<f32>) {
         if specular {
-            return 1.0;
+            return (1.0, None);
         }
         let Some(a) = scene.area_light_of[hit.object] else {
-            return 1.0;
+            return (1.0, None);
         };
         let a = a as usize;
         let light = &scene.area_lights[a];
         let p_light =
             scene.light_sampler.area_probability(a) * light.pdf(prev_point, hit.point, hit.normal);
-        power_heuristic(prev_pdf, p_light)
+        (power_heuristic(prev_pdf, p_light), Some(p_light))
     }
 
     /// Next-event estimation at `hit`: one light chosen by power, its light through the
     /// BSDF, weighed by MIS against the BSDF's sampling of the same direction.
-    fn light_sample(
+    fn light_sample<R: PathRecorder>(
         &self,
         scene: &Scene,
         hit: &Hit,
@@ -173,7 +270,7 @@ impl Path {
         uc: f32,
         ul: Vec2,
         rays: &mut RayStats,
-    ) -> Color {
+    ) -> (Color, Option<LightSampleRecord>) {
         let Some(c) = scene.light_sampler.sample(
             &scene.lights,
             &scene.area_lights,
@@ -182,22 +279,64 @@ impl Path {
             ul,
             Falloff::InverseSquare,
         ) else {
-            return Color::ZERO;
+            return (Color::ZERO, None);
         };
         if c.pdf.is_nan() || c.pdf <= 0.0 {
-            return Color::ZERO;
+            return (Color::ZERO, None);
         }
         let wi = v.frame.to_local(c.to_light);
+        // The light sample's MIS weight, and the BSDF's density it weighs against.
+        let weight = || {
+            let bsdf_pdf = if c.delta { 0.0 } else { v.bsdf.pdf(v.wo, wi) };
+            let w = if c.delta {
+                1.0
+            } else {
+                power_heuristic(c.pdf, bsdf_pdf)
+            };
+            (w, bsdf_pdf)
+        };
+        let f = v.bsdf.f(v.wo, wi) * wi.z.abs();
+        let record = |blocked: Option<&str>| {
+            R::ACTIVE.then(|| {
+                let n = scene.lights.len();
+                let (w, bsdf_pdf) = weight();
+                LightSampleRecord {
+                    light: c.light,
+                    what: if c.light < n {
+                        scene.lights[c.light].kind_name().to_string()
+                    } else {
+                        let object = scene.area_lights[c.light - n].object;
+                        format!("area light on `{}`", scene.objects[object].name)
+                    },
+                    direction: c.to_light.to_array(),
+                    distance: c.distance,
+                    radiance: c.radiance.to_array(),
+                    light_pdf: c.pdf,
+                    bsdf_pdf,
+                    f_cos: f.to_array(),
+                    mis_weight: w,
+                    blocked: blocked.map(str::to_string),
+                    contribution: [0.0; 3],
+                }
+            })
+        };
         // The geometric and the shading normal must agree on the side the light is on, or
         // light would leak through the surface.
         let outward = c.to_light.dot(v.ng) > 0.0;
         let wo_outward = v.frame.to_world(v.wo).dot(v.ng) > 0.0;
         if (wi.z * v.wo.z > 0.0) != (outward == wo_outward) {
-            return Color::ZERO;
+            return (
+                Color::ZERO,
+                record(Some(
+                    "the shading and the true normal disagree about its side",
+                )),
+            );
         }
-        let f = v.bsdf.f(v.wo, wi) * wi.z.abs();
         if f == Color::ZERO {
-            return Color::ZERO;
+            return (
+                Color::ZERO,
+                record(Some("the BSDF returns nothing toward it")),
+            );
         }
         let side = if outward { v.ng } else { -v.ng };
         let shadow = Ray::new(offset_ray_origin(hit.point, side), c.to_light);
@@ -208,14 +347,10 @@ impl Path {
             f32::INFINITY
         };
         if scene.occluded(&shadow, t_max, scene.leaving(hit, outward)) {
-            return Color::ZERO;
+            return (Color::ZERO, record(Some("the shadow ray is blocked")));
         }
-        let w = if c.delta {
-            1.0
-        } else {
-            power_heuristic(c.pdf, v.bsdf.pdf(v.wo, wi))
-        };
-        f * c.radiance * (w / c.pdf)
+        let (w, _) = weight();
+        (f * c.radiance * (w / c.pdf), record(None))
     }
 
     /// The world direction of a BSDF sample and whether it passes through the surface;

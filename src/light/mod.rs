@@ -136,6 +136,15 @@ impl Light {
         }
     }
 
+    /// The light's `type` in the scene file.
+    pub fn kind_name(&self) -> &'static str {
+        match self {
+            Light::Point { .. } => "point",
+            Light::Directional { .. } => "directional",
+            Light::Spot { .. } => "spot",
+        }
+    }
+
     /// Where the light is, for lights that have a position.
     pub fn position(&self) -> Option<Vec3A> {
         match self {

@@ -438,6 +438,28 @@ fn checked(scene: &Scene, c: Color, ray: &Ray, x: u32, y: u32, bad: &mut BadSamp
     Color::ZERO
 }
 
+/// Starts sample `index` of pixel `(x, y)` in `sampler` and places it on the film by the
+/// sampler's first two numbers, through the filter's distribution: the film position and
+/// the sign of the filter's weight there. What the rest of the sample's numbers are for is
+/// the integrator's.
+#[inline]
+pub fn start_sample(
+    s: &RenderSettings,
+    sampler: &mut Sampler,
+    x: u32,
+    y: u32,
+    index: u32,
+) -> (f32, f32, f32) {
+    sampler.start(x, y, index);
+    let u = sampler.next_2d();
+    let (dx, dy) = (s.filter.offset_in_unit(u.x), s.filter.offset_in_unit(u.y));
+    (
+        x as f32 + 0.5 + dx,
+        y as f32 + 0.5 + dy,
+        s.filter.sign_at(dx) * s.filter.sign_at(dy),
+    )
+}
+
 /// A pixel of an integrator that takes its numbers from a [`Sampler`]: any number of
 /// samples, each placed on the film by its sampler's first two numbers through the filter's
 /// distribution, averaged with the signs of their filter weights.
@@ -452,19 +474,12 @@ fn render_pixel_sampled(
     let s = &scene.settings;
     let camera = scene.camera.raster(s.width, s.height);
     let mut sampler = Sampler::new(s.integrator.sampler, s.seed);
-    let (cx, cy) = (x as f32 + 0.5, y as f32 + 0.5);
     let signed = s.filter.has_negative_lobes();
     let (mut sum, mut weight, mut unsigned) = (Color::ZERO, 0.0f32, Color::ZERO);
     for index in 0..s.spp {
-        sampler.start(x, y, index);
-        let u = sampler.next_2d();
-        let (dx, dy) = (s.filter.offset_in_unit(u.x), s.filter.offset_in_unit(u.y));
-        let sign = if signed {
-            s.filter.sign_at(dx) * s.filter.sign_at(dy)
-        } else {
-            1.0
-        };
-        let ray = camera.ray(cx + dx, cy + dy);
+        let (px, py, filter_sign) = start_sample(s, &mut sampler, x, y, index);
+        let sign = if signed { filter_sign } else { 1.0 };
+        let ray = camera.ray(px, py);
         let c = integrator.radiance_sampled(scene, &ray, &mut sampler, rays);
         let c = checked(scene, c, &ray, x, y, bad);
         sum += c * sign;

@@ -210,3 +210,108 @@ fn a_sample_past_the_last_is_told_the_range_in_words() {
         "{four}"
     );
 }
+
+/// Under the path tracer `explain` follows the one path of a sample: every vertex's
+/// contributions add up to the sample's value, which is what the renderer gives that pixel
+/// at one sample per pixel (the same sample 0, to the bit), and recording changes nothing.
+#[test]
+fn a_path_tracers_sample_is_explained_and_adds_up() {
+    use snell::integrator::Path;
+    use snell::integrator::path_explain::{PathEnd, PathRecord};
+    let dir = super::scratch("explain-path");
+    let scene_path = repo("scenes/cornell.toml");
+    let mut scene = load(&scene_path).unwrap();
+    (
+        scene.settings.width,
+        scene.settings.height,
+        scene.settings.spp,
+    ) = (64, 64, 1);
+    let img = snell::render::render(&scene, &Path, Some(1), &|_| {})
+        .unwrap()
+        .image;
+    let mut bounced = 0;
+    let mut lit = 0;
+    for (x, y) in [
+        (32u32, 40u32),
+        (20, 50),
+        (45, 30),
+        (10, 10),
+        (32, 5),
+        (50, 55),
+    ] {
+        let s = &scene.settings;
+        let mut sampler = snell::sampler::Sampler::new(s.integrator.sampler, s.seed);
+        let (px, py, _) = snell::render::start_sample(s, &mut sampler, x, y, 0);
+        let ray = scene.camera.ray(px, py, s.width, s.height);
+        let mut again = sampler.clone();
+        let mut rec = PathRecord::default();
+        let c = Path.trace(
+            &scene,
+            &ray,
+            &mut sampler,
+            &mut RayStats::default(),
+            &mut rec,
+        );
+        let plain = Path.radiance(&scene, &ray, &mut again, &mut RayStats::default());
+        assert_eq!(c, plain, "recording changed the value at ({x}, {y})");
+        assert_eq!(c, img.pixels[(y * 64 + x) as usize], "pixel ({x}, {y})");
+        let total = rec.total();
+        for ch in 0..3 {
+            let want = c.to_array()[ch];
+            assert!(
+                (total[ch] - want).abs() <= 1e-5 * want.max(1.0),
+                "({x}, {y}): the vertices add {total:?}, the sample is {c}"
+            );
+        }
+        assert!(rec.end.is_some(), "({x}, {y}): the path's end is said");
+        bounced += rec.vertices.iter().filter(|v| v.bounce.is_some()).count();
+        lit += rec
+            .vertices
+            .iter()
+            .filter(|v| v.light.as_ref().is_some_and(|l| l.blocked.is_none()))
+            .count();
+        if let Some(PathEnd::Escaped { contribution }) = rec.end {
+            assert_eq!(contribution, [0.0; 3], "the box's outside is black");
+        }
+    }
+    assert!(
+        bounced > 6 && lit > 3,
+        "{bounced} bounces, {lit} lit light samples"
+    );
+    // The command line prints the same path, as text and as JSON.
+    let run = |args: &[&str]| {
+        let o = Command::new(env!("CARGO_BIN_EXE_snell"))
+            .args(args)
+            .current_dir(&dir)
+            .output()
+            .unwrap();
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        String::from_utf8(o.stdout).unwrap()
+    };
+    let file = scene_path.to_str().unwrap();
+    let flags = [
+        "--width", "64", "--height", "64", "--spp", "1", "--pixel", "32,40",
+    ];
+    let text = run(&[&["explain", file][..], &flags].concat());
+    for word in [
+        "vertex 0",
+        "light sample",
+        "MIS weight",
+        "bounce",
+        "the sample's value",
+    ] {
+        assert!(text.contains(word), "{word}: {text}");
+    }
+    let json: serde_json::Value =
+        serde_json::from_str(&run(&[&["explain", file, "--json"][..], &flags].concat())).unwrap();
+    let color = &json["color"];
+    assert_eq!(
+        color[0].as_f64().unwrap() as f32,
+        img.pixels[40 * 64 + 32].x,
+        "{json}"
+    );
+    assert!(
+        json["path"]["vertices"][0]["light"]["mis_weight"].is_number(),
+        "{json}"
+    );
+}

@@ -141,7 +141,7 @@ pub(crate) struct ExplainArgs {
     #[arg(long, value_name = "X,Y", value_parser = parse_pixel)]
     pub(crate) pixel: (u32, u32),
     /// Which of the pixel's samples, from 0 (in the order the renderer takes them) [default:
-    /// the ray through the pixel's centre].
+    /// the ray through the pixel's centre; under the path tracer, sample 0].
     #[arg(long, allow_negative_numbers = true, value_parser = whole::<u32>, value_name = "K")]
     pub(crate) sample: Option<u32>,
     #[command(flatten)]

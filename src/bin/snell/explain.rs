@@ -20,12 +20,6 @@ pub(crate) fn explain(args: ExplainArgs) -> ExitCode {
     if let Err(code) = check_size_and_spp(s, &limits) {
         return code;
     }
-    if s.integrator.kind != snell::scene::IntegratorKind::Whitted {
-        return usage_error(
-            "explain shows the Whitted integrator's ray trees; it cannot yet follow a path tracer's path",
-            Some("run it with --integrator whitted"),
-        );
-    }
     let (x, y) = args.pixel;
     if x >= s.width || y >= s.height {
         return usage_error(
@@ -40,7 +34,9 @@ pub(crate) fn explain(args: ExplainArgs) -> ExitCode {
             )),
         );
     }
+    let path = s.integrator.kind == snell::scene::IntegratorKind::Path;
     let film = match args.sample {
+        None if path => (0.0, 0.0),
         None => (x as f32 + 0.5, y as f32 + 0.5),
         Some(k) if k >= s.spp => {
             let (has, help) = if s.spp == 1 {
@@ -74,6 +70,9 @@ pub(crate) fn explain(args: ExplainArgs) -> ExitCode {
             at
         }
     };
+    if path {
+        return explain_path(&args, &scene, args.sample.unwrap_or(0));
+    }
     let ray = scene.camera.ray(film.0, film.1, s.width, s.height);
     let mut rec = TreeRecorder::new(args.max_rays);
     let mut rays = snell::integrator::RayStats::default();
@@ -125,5 +124,70 @@ pub(crate) fn explain(args: ExplainArgs) -> ExitCode {
             color.z
         );
     }
+    ExitCode::SUCCESS
+}
+
+/// `explain` under the path tracer: the one path of sample `k`, as the renderer takes it.
+fn explain_path(args: &ExplainArgs, scene: &snell::Scene, k: u32) -> ExitCode {
+    use snell::integrator::Path;
+    use snell::integrator::path_explain::PathRecord;
+    let s = &scene.settings;
+    let (x, y) = args.pixel;
+    let mut sampler = snell::sampler::Sampler::new(s.integrator.sampler, s.seed);
+    let (px, py, _) = snell::render::start_sample(s, &mut sampler, x, y, k);
+    let ray = scene.camera.ray(px, py, s.width, s.height);
+    let mut rays = snell::integrator::RayStats::default();
+    let mut rec = PathRecord::default();
+    let color = Path.trace(scene, &ray, &mut sampler, &mut rays, &mut rec);
+    let total = rec.total();
+    let clamped = s.integrator.clamp.filter(|c| total.iter().any(|t| t > c));
+    if args.json {
+        let doc = serde_json::json!({
+            "scene": args.scene.display().to_string(),
+            "integrator": "path",
+            "image": [s.width, s.height],
+            "pixel": [x, y],
+            "sample": k,
+            "film_position": [px, py],
+            "color": color.to_array(),
+            "sum_of_contributions": total,
+            "clamp": s.integrator.clamp,
+            "rays_traced": { "camera": rays.camera, "secondary": rays.secondary, "shadow": rays.shadow },
+            "path": rec,
+        });
+        match serde_json::to_string_pretty(&doc) {
+            Ok(text) => outln!("{text}"),
+            Err(e) => {
+                eprintln!("error: {e}");
+                return ExitCode::from(1);
+            }
+        }
+        return ExitCode::SUCCESS;
+    }
+    outln!(
+        "pixel {x},{y} of {} ({} x {}), path-traced sample {k} of {}, film position ({px}, {py}):",
+        args.scene.display(),
+        s.width,
+        s.height,
+        s.spp
+    );
+    out!("{}", rec.to_text());
+    let clamp_note = match clamped {
+        Some(c) => format!(
+            ", clamped to {c} per channel from ({}, {}, {})",
+            total[0], total[1], total[2]
+        ),
+        None => String::new(),
+    };
+    outln!(
+        "{} rays traced ({} camera, {} bounces, {} shadow); the sample's value, the sum of what the vertices add, is ({}, {}, {}) in linear RGB{clamp_note}",
+        rays.camera + rays.secondary + rays.shadow,
+        rays.camera,
+        rays.secondary,
+        rays.shadow,
+        color.x,
+        color.y,
+        color.z
+    );
     ExitCode::SUCCESS
 }
