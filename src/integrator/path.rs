@@ -250,10 +250,9 @@ impl Path {
         if specular {
             return (1.0, None);
         }
-        let Some(a) = scene.area_light_of[hit.object] else {
+        let Some(a) = scene.area_light_at(hit) else {
             return (1.0, None);
         };
-        let a = a as usize;
         let light = &scene.area_lights[a];
         let p_light =
             scene.light_sampler.area_probability(a) * light.pdf(prev_point, hit.point, hit.normal);

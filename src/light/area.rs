@@ -44,6 +44,34 @@ pub struct AreaLight {
     pub object: usize,
 }
 
+/// Which area light each part of an object is: a hit on it names its light through this.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub enum ObjectLights {
+    /// The object is no light (or one light sampling cannot reach).
+    #[default]
+    None,
+    /// The whole object is this light.
+    Whole(u32),
+    /// A mesh: per lane of its triangles (a hit's `prim`), the light, or `u32::MAX` where
+    /// the triangle does not emit.
+    Triangles(Box<[u32]>),
+}
+
+impl ObjectLights {
+    /// The light that triangle `prim` (0 for shapes other than meshes) is part of.
+    #[inline]
+    pub fn at(&self, prim: u32) -> Option<usize> {
+        match self {
+            ObjectLights::None => None,
+            ObjectLights::Whole(l) => Some(*l as usize),
+            ObjectLights::Triangles(t) => t
+                .get(prim as usize)
+                .filter(|&&l| l != u32::MAX)
+                .map(|&l| l as usize),
+        }
+    }
+}
+
 /// A point on an area light seen from a point in the scene.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct AreaSample {

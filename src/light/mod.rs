@@ -7,7 +7,7 @@
 pub mod area;
 pub mod select;
 
-pub use area::{AreaLight, Emitter};
+pub use area::{AreaLight, Emitter, ObjectLights};
 pub use select::{LightChoice, LightSampler};
 
 use crate::math::{Color, Vec3A};

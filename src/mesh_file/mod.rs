@@ -52,6 +52,10 @@ pub struct MtlMaterial {
     pub d: Option<f32>,
     /// Transmission filter colour (`Tf`; a single value means grey).
     pub tf: Option<[f32; 3]>,
+    /// Roughness (`Pr`, the PBR extension), as Blender's Principled BSDF reads it.
+    pub pr: Option<f32>,
+    /// Metallic (`Pm`, the PBR extension).
+    pub pm: Option<f32>,
     /// Illumination model (`illum`).
     pub illum: Option<u32>,
     /// Diffuse texture (`map_Kd`), resolved relative to the MTL file's folder.

@@ -91,7 +91,7 @@ pub fn parse_mtl(
                     ));
                 }
             }
-            "ns" | "ni" | "d" | "tr" => {
+            "ns" | "ni" | "d" | "tr" | "pr" | "pm" => {
                 // `d -halo 0.5`: the halo option is skipped.
                 let value = rest
                     .split_ascii_whitespace()
@@ -107,6 +107,8 @@ pub fn parse_mtl(
                 match kw.as_str() {
                     "ns" => m.ns = Some(x),
                     "ni" => m.ni = Some(x),
+                    "pr" => m.pr = Some(x),
+                    "pm" => m.pm = Some(x),
                     "d" => {
                         m.d = Some(x);
                         d_given = true;
@@ -1100,7 +1102,7 @@ mod tests {
     const MTL: &str = "# materials\r\nKd 9 9 9\r\nnewmtl red\r\nKd 0.8 0.1 0.1\r\nKs 0.5\r\n\
         Ka 1 1 1\r\nNs 32\r\nNi 1.5\r\nd 0.75\r\nTr 0.9\r\nillum 2\r\n\
         map_Kd -s 1 1 1 -o 0.5 -bm 0.2 -clamp on textures\\red wood.png\r\nmap_Bump bump.png\r\n\
-        newmtl glass\r\nTr 0.25\r\nTf 0.9\r\nKe 1 2 3\r\nillum 7.0\r\nmap_Kd /abs/tex.png\r\n\
+        newmtl glass\r\nTr 0.25\r\nTf 0.9\r\nKe 1 2 3\r\nillum 7.0\r\nmap_Kd /abs/tex.png\r\nPr 0.3\r\nPM 1\r\n\
         newmtl spectral\r\nKd spectral foo.rfl\r\nd -halo 0.5\r\n";
 
     #[test]
@@ -1133,6 +1135,8 @@ mod tests {
         assert_eq!(glass.tf, Some([0.9; 3]));
         assert_eq!(glass.ke, Some([1.0, 2.0, 3.0]));
         assert_eq!(glass.illum, Some(7));
+        assert_eq!((glass.pr, glass.pm), (Some(0.3), Some(1.0)));
+        assert_eq!((red.pr, red.pm), (None, None));
         assert_eq!(glass.map_kd, Some(PathBuf::from("/abs/tex.png")));
         let spectral = &m.materials[2];
         assert_eq!(spectral.kd, None);
@@ -1147,7 +1151,7 @@ mod tests {
         assert!(
             m.warnings
                 .iter()
-                .any(|w| w.contains("scene.mtl:21: `Kd` needs 1 or 3 numbers")),
+                .any(|w| w.contains("scene.mtl:23: `Kd` needs 1 or 3 numbers")),
             "{:?}",
             m.warnings
         );

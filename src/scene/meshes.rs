@@ -7,9 +7,8 @@ use super::diag::{DocPath, did_you_mean};
 use super::format::{MeshDef, MeshObjectDef};
 use crate::geometry::Mesh;
 use crate::material::Material;
-use crate::math::Color;
-use crate::mesh_file::{self, MeshInputError, MtlMaterial};
-use crate::texture::{ColorSpace, ImageData, Mapping, Pattern, Texture};
+use crate::mesh_file::{self, MeshInputError};
+use crate::texture::Texture;
 use std::collections::{BTreeMap, HashMap};
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -230,112 +229,5 @@ impl Builder<'_> {
             slot_materials,
             unread_mtl,
         })
-    }
-
-    /// A material from an MTL file, as docs/scene-format.md describes: Kd (or map_Kd) is the
-    /// colour, Ks and Ns the highlight, `d` (or `Tr`) the opacity, Ni the index of
-    /// refraction, Tf the colour of glass, and illum 3 and 5 turn on mirror reflection.
-    fn mtl_material(
-        &mut self,
-        m: &MtlMaterial,
-        path: &DocPath,
-        textures: &mut Vec<Texture>,
-    ) -> Material {
-        let rgb = |c: [f32; 3]| Color::from(c).clamp(Color::ZERO, Color::splat(1e6));
-        let illum = m.illum.unwrap_or(2);
-        let mut transparency = (1.0 - m.d.unwrap_or(1.0)).clamp(0.0, 1.0);
-        if transparency == 0.0 && matches!(illum, 4 | 6 | 7 | 9) && m.tf.is_some() {
-            transparency = m.tf.map_or(0.0, |t| rgb(t).max_element().min(1.0));
-        }
-        let kd = m.kd.map_or(Color::splat(0.8), rgb);
-        let pattern = match &m.map_kd {
-            Some(file) => match ImageData::load_limited(
-                file,
-                ColorSpace::Srgb,
-                self.limits.max_texture_pixels,
-            ) {
-                Ok(img) => Pattern::Image(Arc::new(img)),
-                Err(e) => {
-                    self.error_help(
-                        path.clone(),
-                        format!("material `{}`: cannot load map_Kd: {e}", m.name),
-                        "map_Kd paths are relative to the MTL file's folder",
-                    );
-                    Pattern::Solid(kd)
-                }
-            },
-            // Glass takes its colour from the transmission filter.
-            None if transparency > 0.0 => Pattern::Solid(m.tf.map_or(Color::ONE, rgb)),
-            None => Pattern::Solid(kd),
-        };
-        textures.push(Texture {
-            pattern,
-            mapping: Mapping::Uv,
-        });
-        let highlight = !matches!(illum, 0 | 1);
-        let ks = m.ks.map_or(Color::ZERO, rgb);
-        let (shininess, highlight_weight) = mtl_highlight(m.ns);
-        let mut out = Material::base(
-            textures.len() - 1,
-            crate::material::Surface::Phong,
-            m.ke.map(rgb)
-                .filter(|e| e.max_element() > 0.0)
-                .map(|radiance| crate::material::Emission {
-                    radiance,
-                    two_sided: false,
-                }),
-        );
-        out.diffuse = if illum == 0 { 0.0 } else { 1.0 };
-        out.specular = if highlight {
-            ks * highlight_weight
-        } else {
-            Color::ZERO
-        };
-        out.shininess = shininess;
-        out.reflectivity = if matches!(illum, 3 | 5) {
-            ks.max_element().clamp(0.0, 1.0)
-        } else {
-            0.0
-        };
-        out.transparency = transparency;
-        out.ior = m.ni.filter(|n| *n > 0.0 && n.is_finite()).unwrap_or(1.5);
-        out
-    }
-}
-
-/// The roughness an MTL file's specular exponent `Ns` stands for, as Blender's OBJ importer
-/// reads it: `1 - sqrt(Ns / 1000)`, so `Ns 0` (which 3ds Max writes beside `Ks 0.9`) is fully
-/// rough and `Ns 1000` a mirror-like polish. A file without `Ns` gets roughness 0.5,
-/// Blender's default (`Ns 250`).
-pub(super) fn mtl_roughness(ns: Option<f32>) -> f32 {
-    let ns = ns.filter(|n| n.is_finite()).unwrap_or(250.0);
-    1.0 - (ns.clamp(0.0, 1000.0) / 1000.0).sqrt()
-}
-
-/// The Phong highlight of an MTL material: the exponent `Ns` (at least 1), and the weight of
-/// `Ks`, `1 - roughness`, so that a rough surface shows no highlight instead of the constant
-/// sheen an exponent of 0 gives over the whole lit side.
-fn mtl_highlight(ns: Option<f32>) -> (f32, f32) {
-    let exponent = ns.filter(|n| n.is_finite()).unwrap_or(250.0);
-    (exponent.clamp(1.0, 10_000.0), 1.0 - mtl_roughness(ns))
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn mtl_shininess_maps_to_roughness_as_blender_reads_it() {
-        assert_eq!(mtl_roughness(Some(0.0)), 1.0);
-        assert_eq!(mtl_roughness(Some(1000.0)), 0.0);
-        assert_eq!(mtl_roughness(Some(5000.0)), 0.0);
-        assert!((mtl_roughness(Some(250.0)) - 0.5).abs() < 1e-6);
-        assert!((mtl_roughness(None) - 0.5).abs() < 1e-6);
-        assert_eq!(mtl_roughness(Some(-3.0)), 1.0);
-        // 3ds Max's `Ks 0.9` with `Ns 0`: no highlight at all.
-        assert_eq!(mtl_highlight(Some(0.0)), (1.0, 0.0));
-        let (n, w) = mtl_highlight(Some(96.0));
-        assert_eq!(n, 96.0);
-        assert!((w - (0.096f32).sqrt()).abs() < 1e-6);
     }
 }

@@ -6,6 +6,7 @@ mod diag;
 pub mod format;
 mod limits;
 mod meshes;
+mod mtl;
 
 pub use build::{MAX_MAGNITUDE, load, load_str, load_with};
 pub use diag::{DocPath, Format, Problem, SceneDiagnostic, SceneError, Seg, did_you_mean};
@@ -268,6 +269,8 @@ pub struct Hit {
     pub object: usize,
     /// Index of the material at the hit (objects with one material: theirs).
     pub material: usize,
+    /// The mesh's triangle hit (0 for other shapes).
+    pub prim: u32,
     /// What textures need, in object space.
     pub tex: TexturePoint,
 }
@@ -299,8 +302,8 @@ pub struct Scene {
     pub lights: Vec<Light>,
     /// Emitting objects the path tracer samples as lights.
     pub area_lights: Vec<AreaLight>,
-    /// Per object, the index of its area light, if it is one.
-    pub area_light_of: Vec<Option<u32>>,
+    /// Per object, which area lights it is (see [`Scene::area_light_at`]).
+    pub area_light_of: Vec<crate::light::ObjectLights>,
     /// The choice among all lights by power, for the path tracer.
     pub light_sampler: LightSampler,
     /// Things that are allowed but probably not meant.
@@ -319,6 +322,12 @@ pub struct Scene {
 }
 
 impl Scene {
+    /// The area light a hit is on, if the path tracer samples the emission there.
+    #[inline]
+    pub fn area_light_at(&self, hit: &Hit) -> Option<usize> {
+        self.area_light_of[hit.object].at(hit.prim)
+    }
+
     /// Closest hit of a world ray in `(0, t_max)`, with its surface details.
     #[inline]
     pub fn closest_hit(&self, ray: &Ray, t_max: f32) -> Option<Hit> {
@@ -418,6 +427,7 @@ impl Scene {
             shading_normal,
             object: i,
             material: o.material_at(&h),
+            prim: h.prim,
             tex: TexturePoint {
                 point: s.point,
                 uv: s.uv * o.uv_scale,

@@ -204,3 +204,65 @@ fn mtl_ns_0_is_fully_rough_not_a_sheen_over_everything() {
         matte.pixels[centre]
     );
 }
+
+/// MTL materials become the path tracer's types where the file says enough: `Pm` a metal
+/// tinted by `Kd`, `illum 7` with `d` below 1 glass of index `Ni`, `illum 4` a thin pane,
+/// `illum 5` or `Pr` a coated plastic, `Ke` emission; others stay Phong.
+#[test]
+fn mtl_materials_map_onto_the_physically_based_types() {
+    use snell::material::Surface;
+    let dir = scratch("mesh-mtl-types");
+    std::fs::write(
+        dir.join("kinds.mtl"),
+        "newmtl gold\nKd 1 0.8 0.3\nPm 1\nPr 0.5\n\
+         newmtl glass\nNi 1.33\nd 0.1\nillum 7\n\
+         newmtl pane\nd 0.2\nillum 4\n\
+         newmtl coat\nKd 0.2 0.3 0.8\nillum 5\nNs 1000\n\
+         newmtl rough\nKd 0.5 0.5 0.5\nPr 0.3\n\
+         newmtl lamp\nKd 1 1 1\nKe 4 4 2\n",
+    )
+    .unwrap();
+    let mut obj = String::from("mtllib kinds.mtl\n");
+    for (k, name) in ["gold", "glass", "pane", "coat", "rough", "lamp"]
+        .iter()
+        .enumerate()
+    {
+        let x = k as f32 * 2.0;
+        obj += &format!(
+            "v {x} 0 0\nv {} 0 0\nv {x} 1 0\nusemtl {name}\nf -3 -2 -1\n",
+            x + 1.0
+        );
+    }
+    std::fs::write(dir.join("kinds.obj"), obj).unwrap();
+    let text = "[camera]\nposition = [0, 0, 3]\nlook_at = [0, 0, 0]\n\
+        [[objects]]\ntype = \"mesh\"\nfile = \"kinds.obj\"\n";
+    let scene = load_str(text, &dir.join("t.toml"), &dir, Format::Toml).unwrap();
+    let m = |name: &str| {
+        let i = scene
+            .material_names
+            .iter()
+            .position(|n| n == &format!("kinds.obj:{name}"))
+            .unwrap_or_else(|| panic!("{name} in {:?}", scene.material_names));
+        &scene.materials[i]
+    };
+    match m("gold").surface {
+        Surface::Conductor(c) => {
+            assert_eq!(c.roughness, snell::material::Scalar::Value(0.25), "Pr²")
+        }
+        other => panic!("gold: {other:?}"),
+    }
+    assert!(matches!(m("glass").surface, Surface::Dielectric(_)));
+    assert_eq!(m("glass").ior, 1.33);
+    assert_eq!(m("glass").transparency, 1.0);
+    assert!(matches!(m("pane").surface, Surface::Thin(_)));
+    assert!(matches!(m("coat").surface, Surface::Plastic(_)));
+    assert!(matches!(m("rough").surface, Surface::Plastic(_)));
+    let lamp = m("lamp");
+    assert_eq!(lamp.surface, Surface::Phong);
+    assert_eq!(
+        lamp.emission.map(|e| (e.radiance, e.two_sided)),
+        Some((Color::new(4.0, 4.0, 2.0), false))
+    );
+    // The lamp's triangle is a light the path tracer samples.
+    assert_eq!(scene.area_lights.len(), 1);
+}

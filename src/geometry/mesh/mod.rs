@@ -45,6 +45,8 @@ pub struct Mesh {
     faces: Vec<[u32; 3]>,
     /// Number of triangles (not counting unfilled lanes).
     triangles: usize,
+    /// Per block, how many of its lanes hold a triangle of their own (the first lanes).
+    filled: Vec<u8>,
     normals: Vec<Vec3>,
     uvs: Vec<Vec2>,
     /// Material slot of each triangle, in BVH order, or empty.
@@ -202,6 +204,7 @@ impl Mesh {
                 blocks,
                 faces,
                 triangles: kept.len(),
+                filled: taken.iter().map(|&n| n as u8).collect(),
                 normals,
                 uvs,
                 slots,
@@ -240,6 +243,46 @@ impl Mesh {
             + self.normals.len() * 12
             + self.uvs.len() * 8
             + self.slots.len() * 2
+            + self.filled.len()
+    }
+
+    /// Every triangle once (unfilled lanes left out), as `(prim, corners)` in object space,
+    /// the corners in the order whose `(b - a) x (c - a)` is the front normal a hit on the
+    /// triangle reports (see [`Mesh::surface`]; taken where its centre is hit).
+    pub fn triangles(&self) -> impl Iterator<Item = (u32, [Vec3A; 3])> + '_ {
+        self.filled.iter().enumerate().flat_map(move |(block, &n)| {
+            (0..n as usize).map(move |lane| {
+                let prim = (block * LANES + lane) as u32;
+                let [a, b, c] = self.corners(prim);
+                let centre = ShapeHit {
+                    t: 0.0,
+                    part: 0,
+                    prim,
+                    bary: Vec2::splat(1.0 / 3.0),
+                };
+                let flipped = self
+                    .interpolated_normal(&centre)
+                    .is_some_and(|n| n.dot((b - a).cross(c - a)) < 0.0);
+                (prim, if flipped { [a, c, b] } else { [a, b, c] })
+            })
+        })
+    }
+
+    /// The triangle whose lane `prim` is: itself, or for an unfilled lane (which repeats
+    /// its block's first triangle) that first triangle.
+    #[inline]
+    pub fn own_prim(&self, prim: u32) -> u32 {
+        let (block, lane) = (prim as usize / LANES, prim as usize % LANES);
+        if lane < self.filled[block] as usize {
+            prim
+        } else {
+            (block * LANES) as u32
+        }
+    }
+
+    /// The number of lanes, filled or not: one more than the largest `prim` a hit reports.
+    pub fn lanes(&self) -> usize {
+        self.faces.len()
     }
 
     /// Material slot of triangle `prim` (as reported in a [`ShapeHit`]); 0 without slots.

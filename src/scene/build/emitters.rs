@@ -1,43 +1,39 @@
-//! The area lights of a scene: each object whose material emits, in world space. Shapes the
-//! path tracer cannot sample (boxes, cylinders, cones, planes, meshes, and disks and spheres
-//! stretched unevenly by a transform) still emit where a path meets them, found by BSDF
-//! sampling alone, and the scene warns that they light it noisily.
+//! The area lights of a scene: each object whose material emits, in world space, and each
+//! emitting triangle of a mesh (a light of its own, so that lights are chosen by power
+//! triangle by triangle). Shapes the path tracer cannot sample (boxes, cylinders, cones,
+//! planes, and disks and spheres stretched unevenly by a transform) still emit where a path
+//! meets them, found by BSDF sampling alone, and the scene warns that they light it noisily.
 
-use crate::geometry::{Disk, Rect, Shape, Sphere, Triangle};
-use crate::light::{AreaLight, Emitter};
-use crate::material::Material;
+use crate::geometry::{Disk, Mesh, Rect, Shape, Sphere, Triangle};
+use crate::light::{AreaLight, Emitter, ObjectLights};
+use crate::material::{Emission, Material};
 use crate::math::{Transform, Vec3A};
 use crate::scene::Object;
 
-/// The area lights, and per object the index of its light (`None` for objects that do not
-/// emit, or that light sampling cannot reach).
+/// The area lights, and per object which of them it is.
 pub(super) fn area_lights(
     objects: &[Object],
     materials: &[Material],
     warnings: &mut Vec<String>,
-) -> (Vec<AreaLight>, Vec<Option<u32>>) {
+) -> (Vec<AreaLight>, Vec<ObjectLights>) {
     let mut lights = vec![];
-    let mut of_object = vec![None; objects.len()];
+    let mut of_object = vec![ObjectLights::None; objects.len()];
+    let emitting = |m: usize| {
+        materials[m]
+            .emission
+            .filter(|e| e.radiance.max_element() > 0.0)
+    };
     for (i, o) in objects.iter().enumerate() {
-        let emitting = |m: usize| {
-            materials[m]
-                .emission
-                .filter(|e| e.radiance.max_element() > 0.0)
-        };
-        let any_slot = o.slot_materials.iter().any(|&m| emitting(m).is_some());
-        let Some(e) = (if o.slot_materials.is_empty() {
-            emitting(o.material)
-        } else {
-            None
-        }) else {
-            if any_slot {
-                warnings.push(unsampled(o, "its mesh file's emitting materials"));
-            }
+        if let Shape::Mesh(mesh) = &o.shape {
+            of_object[i] = mesh_lights(i, o, mesh, &emitting, &mut lights);
+            continue;
+        }
+        let Some(e) = emitting(o.material) else {
             continue;
         };
         match emitter(&o.shape, o.transform.as_ref()) {
             Some(emitter) => {
-                of_object[i] = Some(lights.len() as u32);
+                of_object[i] = ObjectLights::Whole(lights.len() as u32);
                 lights.push(AreaLight {
                     emitter,
                     radiance: e.radiance,
@@ -45,17 +41,76 @@ pub(super) fn area_lights(
                     object: i,
                 });
             }
-            None => warnings.push(unsampled(o, "its emission")),
+            None => warnings.push(format!(
+                "object `{}`: the path tracer finds its emission only where paths happen to hit it, which is noisy; light sampling covers rectangles, disks, triangles, meshes and spheres (disks and spheres scaled evenly)",
+                o.name
+            )),
         }
     }
     (lights, of_object)
 }
 
-fn unsampled(o: &Object, what: &str) -> String {
-    format!(
-        "object `{}`: the path tracer finds {what} only where paths happen to hit it, which is noisy; light sampling covers rectangles, disks, triangles and spheres (disks and spheres scaled evenly)",
-        o.name
-    )
+/// The emitting triangles of mesh object `index` as lights, in world space, each facing
+/// the side a hit on it calls its front.
+fn mesh_lights(
+    index: usize,
+    o: &Object,
+    mesh: &Mesh,
+    emitting: &impl Fn(usize) -> Option<Emission>,
+    lights: &mut Vec<AreaLight>,
+) -> ObjectLights {
+    let material_of = |prim: u32| {
+        if o.slot_materials.is_empty() {
+            o.material
+        } else {
+            o.slot_materials
+                .get(mesh.slot(prim) as usize)
+                .copied()
+                .unwrap_or(o.material)
+        }
+    };
+    let any = if o.slot_materials.is_empty() {
+        emitting(o.material).is_some()
+    } else {
+        o.slot_materials.iter().any(|&m| emitting(m).is_some())
+    };
+    if !any {
+        return ObjectLights::None;
+    }
+    let t = o.transform.as_ref();
+    let mut of_lane = vec![u32::MAX; mesh.lanes()];
+    for (prim, [a, b, c]) in mesh.triangles() {
+        let Some(e) = emitting(material_of(prim)) else {
+            continue;
+        };
+        let (mut wa, mut wb, mut wc) = (a, b, c);
+        if let Some(t) = t {
+            (wa, wb, wc) = (
+                t.point_to_world(a),
+                t.point_to_world(b),
+                t.point_to_world(c),
+            );
+            // A mirroring transform turns the winding but not the hit's front normal.
+            let front = t.normal_to_world((b - a).cross(c - a));
+            if (wb - wa).cross(wc - wa).dot(front) < 0.0 {
+                std::mem::swap(&mut wb, &mut wc);
+            }
+        }
+        let Some(triangle) = Triangle::new(wa, wb, wc) else {
+            continue;
+        };
+        of_lane[prim as usize] = lights.len() as u32;
+        lights.push(AreaLight {
+            emitter: Emitter::Triangle(triangle),
+            radiance: e.radiance,
+            two_sided: e.two_sided,
+            object: index,
+        });
+    }
+    for lane in 0..of_lane.len() {
+        of_lane[lane] = of_lane[mesh.own_prim(lane as u32) as usize];
+    }
+    ObjectLights::Triangles(of_lane.into_boxed_slice())
 }
 
 /// The shape in world space, where it is one that lights can be sampled on.
