@@ -1,12 +1,12 @@
 //! Debug views (arbitrary output variables): what the ray through each pixel's centre meets
 //! first — its normal, uv, distance, surface colour, object and material — and how deep the
-//! Whitted tree behind it goes. One ray per pixel, no anti-aliasing, so ids stay exact.
+//! integrator's rays behind it go (Whitted's tree, or the path tracer's path of sample 0). One ray per pixel, no anti-aliasing, so ids stay exact.
 //!
 //! [`AovBuffers::channels`] gives the raw values (for a multi-layer EXR);
 //! [`AovBuffers::display`] maps them to colours that read well (for PNG), documented in
 //! docs/debugging.md.
 
-use super::{RayStats, Whitted};
+use super::{Integrator, RayStats, Whitted};
 use crate::film::Image;
 use crate::math::{Color, Vec2, Vec3A};
 use crate::render::RenderError;
@@ -133,7 +133,15 @@ fn sample(scene: &Scene, x: u32, y: u32) -> Sample {
         .camera
         .ray(x as f32 + 0.5, y as f32 + 0.5, s.width, s.height);
     let mut rays = RayStats::default();
-    Whitted.trace(scene, &ray, 1, None, &mut rays);
+    if s.integrator.kind == crate::scene::IntegratorKind::Path {
+        // The path of the pixel's sample 0, as `snell explain --integrator path` shows it,
+        // from the centre: its numbers after the two that place it on the film.
+        let mut sampler = crate::sampler::Sampler::new(s.integrator.sampler, s.seed);
+        crate::render::start_sample(s, &mut sampler, x, y, 0);
+        super::Path.radiance_sampled(scene, &ray, &mut sampler, &mut rays);
+    } else {
+        Whitted.trace(scene, &ray, 1, None, &mut rays);
+    }
     let bounces = rays.deepest.saturating_sub(1);
     match scene.closest_hit_with_uv(&ray, f32::INFINITY, Skip::NONE) {
         None => Sample {

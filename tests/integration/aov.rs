@@ -237,3 +237,26 @@ fn the_debugging_guides_broken_scenes_show_their_bugs() {
         "no surface is ever left from the inside"
     );
 }
+
+/// `bounces` follows the integrator: the Cornell box's walls reflect no ray of Whitted's
+/// (0 everywhere), while the path tracer's paths bounce on, up to `max_depth - 1` (the
+/// camera ray counts as 1, as Mitsuba counts) and no further.
+#[test]
+fn bounces_count_the_path_tracers_path_under_path() {
+    let mut scene = load(&repo("scenes/cornell.toml")).unwrap();
+    (scene.settings.width, scene.settings.height) = (24, 24);
+    scene.settings.integrator.kind = snell::scene::IntegratorKind::Whitted;
+    let whitted = render_aovs(&scene, Some(2)).unwrap();
+    assert!(whitted.bounces.iter().all(|&b| b == 0));
+    scene.settings.integrator.kind = snell::scene::IntegratorKind::Path;
+    for max_depth in [2u32, 8] {
+        scene.settings.max_depth = max_depth;
+        let path = render_aovs(&scene, Some(2)).unwrap();
+        let most = *path.bounces.iter().max().unwrap();
+        let mean = path.bounces.iter().map(|&b| b as f64).sum::<f64>() / path.bounces.len() as f64;
+        assert_eq!(most, max_depth - 1, "max_depth {max_depth}");
+        assert!(mean > 0.4 * (max_depth - 1) as f64, "mean {mean}");
+        // The same numbers again: sample 0 of each pixel, not a new draw.
+        assert_eq!(render_aovs(&scene, Some(1)).unwrap().bounces, path.bounces);
+    }
+}
