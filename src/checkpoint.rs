@@ -5,17 +5,23 @@
 //! Tiles are independent and every pixel's samples are seeded from `(seed, x, y)`, so a
 //! resumed render gives the same bytes as one that was never stopped.
 //!
-//! The file is binary, little-endian: the line `snell checkpoint 1`, the fingerprint (u64),
-//! width, height, samples per pixel (u32 each), seed (u64), the scene's and the output's
-//! paths (u32 length, UTF-8), the tile count (u32), then per tile its index and pixel count
-//! (u32 each) and its pixels (three f32 each). It is written to a temporary file and renamed
-//! into place, so a checkpoint is never half written.
+//! The file is binary, little-endian: the line `snell checkpoint 2`, the fingerprint (u64),
+//! width, height, samples per pixel (u32 each), seed (u64), the integrator (u32: 0 Whitted,
+//! 1 path), its sampler (u32: 0 independent, 1 Sobol) and clamp (u32 1 and an f32, or 0 and
+//! 0.0 for none), the scene's and the output's paths (u32 length, UTF-8), the tile count
+//! (u32), then per tile its index and pixel count (u32 each) and its pixels (three f32
+//! each). It is written to a temporary file and renamed into place, so a checkpoint is never
+//! half written. Version 1 files (an earlier snell's, the same without the integrator) are
+//! still read.
 
 use crate::math::Color;
+use crate::sampler::SamplerKind;
+use crate::scene::{IntegratorKind, IntegratorSettings};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
-const MAGIC: &[u8] = b"snell checkpoint 1\n";
+const MAGIC: &[u8] = b"snell checkpoint 2\n";
+const MAGIC_1: &[u8] = b"snell checkpoint 1\n";
 
 /// A render's progress.
 #[derive(Clone, Debug, PartialEq)]
@@ -30,12 +36,42 @@ pub struct Checkpoint {
     pub spp: u32,
     /// Sample seed.
     pub seed: u64,
+    /// The integrator, its sampler and clamp, as the render had them (`None` in a version 1
+    /// file, which did not keep them: the scene's and the command line's then).
+    pub integrator: Option<CheckpointIntegrator>,
     /// The scene file (absolute).
     pub scene: PathBuf,
     /// Where the image goes.
     pub output: PathBuf,
     /// Finished tiles by index, pixels row by row.
     pub tiles: BTreeMap<u32, Vec<Color>>,
+}
+
+/// The integrator settings a checkpoint keeps, so that `--resume` needs no flags again.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CheckpointIntegrator {
+    /// Whitted or path.
+    pub kind: IntegratorKind,
+    /// The path tracer's sampler.
+    pub sampler: SamplerKind,
+    /// The path tracer's clamp.
+    pub clamp: Option<f32>,
+}
+
+impl CheckpointIntegrator {
+    /// What a render with settings `s` keeps.
+    pub fn of(s: &IntegratorSettings) -> Self {
+        CheckpointIntegrator {
+            kind: s.kind,
+            sampler: s.sampler,
+            clamp: s.clamp,
+        }
+    }
+
+    /// Puts these settings into `s`.
+    pub fn apply(&self, s: &mut IntegratorSettings) {
+        (s.kind, s.sampler, s.clamp) = (self.kind, self.sampler, self.clamp);
+    }
 }
 
 /// FNV-1a, 64 bits: stable across Rust versions and platforms (unlike `DefaultHasher`).
@@ -60,26 +96,46 @@ impl Checkpoint {
     /// Writes the checkpoint to `path` (through a temporary file renamed into place).
     pub fn save(&self, path: &Path) -> std::io::Result<()> {
         let mut out =
-            Vec::with_capacity(64 + self.tiles.values().map(|t| 8 + t.len() * 12).sum::<usize>());
+            Vec::with_capacity(96 + self.tiles.values().map(|t| 8 + t.len() * 12).sum::<usize>());
+        let u32s = |out: &mut Vec<u8>, vs: &[u32]| {
+            for v in vs {
+                out.extend_from_slice(&v.to_le_bytes());
+            }
+        };
         out.extend_from_slice(MAGIC);
         out.extend_from_slice(&self.fingerprint.to_le_bytes());
-        for v in [self.width, self.height, self.spp] {
-            out.extend_from_slice(&v.to_le_bytes());
-        }
+        u32s(&mut out, &[self.width, self.height, self.spp]);
         out.extend_from_slice(&self.seed.to_le_bytes());
+        let i = self.integrator.unwrap_or(CheckpointIntegrator {
+            kind: IntegratorKind::Whitted,
+            sampler: SamplerKind::Sobol,
+            clamp: None,
+        });
+        u32s(
+            &mut out,
+            &[
+                match i.kind {
+                    IntegratorKind::Whitted => 0,
+                    IntegratorKind::Path => 1,
+                },
+                match i.sampler {
+                    SamplerKind::Independent => 0,
+                    SamplerKind::Sobol => 1,
+                },
+                i.clamp.is_some() as u32,
+                i.clamp.unwrap_or(0.0).to_bits(),
+            ],
+        );
         for p in [&self.scene, &self.output] {
             let s = p.to_string_lossy();
-            out.extend_from_slice(&(s.len() as u32).to_le_bytes());
+            u32s(&mut out, &[s.len() as u32]);
             out.extend_from_slice(s.as_bytes());
         }
-        out.extend_from_slice(&(self.tiles.len() as u32).to_le_bytes());
+        u32s(&mut out, &[self.tiles.len() as u32]);
         for (&i, pixels) in &self.tiles {
-            out.extend_from_slice(&i.to_le_bytes());
-            out.extend_from_slice(&(pixels.len() as u32).to_le_bytes());
+            u32s(&mut out, &[i, pixels.len() as u32]);
             for c in pixels {
-                for v in c.to_array() {
-                    out.extend_from_slice(&v.to_le_bytes());
-                }
+                u32s(&mut out, &c.to_array().map(f32::to_bits));
             }
         }
         crate::output::atomic::write_atomically(path, &out)
@@ -90,9 +146,13 @@ impl Checkpoint {
         let bytes =
             std::fs::read(path).map_err(|e| format!("cannot read {}: {e}", path.display()))?;
         let bad = |what: &str| format!("{} is not a snell checkpoint ({what})", path.display());
-        let rest = bytes
-            .strip_prefix(MAGIC)
-            .ok_or_else(|| bad("it does not start with `snell checkpoint 1`"))?;
+        let (rest, version) = match (bytes.strip_prefix(MAGIC), bytes.strip_prefix(MAGIC_1)) {
+            (Some(rest), _) => (rest, 2),
+            (None, Some(rest)) => (rest, 1),
+            (None, None) => {
+                return Err(bad("it does not start with `snell checkpoint 2`"));
+            }
+        };
         let mut r = Reader { bytes: rest, at: 0 };
         let truncated = || bad("it is cut short");
         let fingerprint = r.u64().ok_or_else(truncated)?;
@@ -100,6 +160,29 @@ impl Checkpoint {
         let height = r.u32().ok_or_else(truncated)?;
         let spp = r.u32().ok_or_else(truncated)?;
         let seed = r.u64().ok_or_else(truncated)?;
+        let integrator = if version == 1 {
+            None
+        } else {
+            let [kind, sampler, clamped, clamp] =
+                [r.u32(), r.u32(), r.u32(), r.u32()].map(|v| v.ok_or_else(truncated));
+            Some(CheckpointIntegrator {
+                kind: match kind? {
+                    0 => IntegratorKind::Whitted,
+                    1 => IntegratorKind::Path,
+                    _ => return Err(bad("it names an integrator snell does not have")),
+                },
+                sampler: match sampler? {
+                    0 => SamplerKind::Independent,
+                    1 => SamplerKind::Sobol,
+                    _ => return Err(bad("it names a sampler snell does not have")),
+                },
+                clamp: match (clamped?, f32::from_bits(clamp?)) {
+                    (0, _) => None,
+                    (1, c) if c > 0.0 && c.is_finite() => Some(c),
+                    _ => return Err(bad("its clamp is not a positive number")),
+                },
+            })
+        };
         let scene = PathBuf::from(r.string().ok_or_else(truncated)?);
         let output = PathBuf::from(r.string().ok_or_else(truncated)?);
         let count = r.u32().ok_or_else(truncated)?;
@@ -108,16 +191,12 @@ impl Checkpoint {
             let index = r.u32().ok_or_else(truncated)?;
             let n = r.u32().ok_or_else(truncated)? as usize;
             // A tile has at most 16 x 16 pixels; refuse anything else before allocating.
-            if n > 256 {
+            if n > (crate::film::TILE * crate::film::TILE) as usize {
                 return Err(bad("a tile is larger than 16 x 16 pixels"));
             }
             let mut pixels = Vec::with_capacity(n);
             for _ in 0..n {
-                let c = [r.f32(), r.f32(), r.f32()];
-                let [Some(x), Some(y), Some(z)] = c else {
-                    return Err(truncated());
-                };
-                pixels.push(Color::new(x, y, z));
+                pixels.push(r.color().ok_or_else(truncated)?);
             }
             tiles.insert(index, pixels);
         }
@@ -127,6 +206,7 @@ impl Checkpoint {
             height,
             spp,
             seed,
+            integrator,
             scene,
             output,
             tiles,
@@ -154,6 +234,9 @@ impl Reader<'_> {
     fn f32(&mut self) -> Option<f32> {
         self.take().map(f32::from_le_bytes)
     }
+    fn color(&mut self) -> Option<Color> {
+        Some(Color::new(self.f32()?, self.f32()?, self.f32()?))
+    }
     fn string(&mut self) -> Option<String> {
         let n = self.u32()? as usize;
         let b = self.bytes.get(self.at..self.at.checked_add(n)?)?;
@@ -176,6 +259,11 @@ mod tests {
             height: 480,
             spp: 16,
             seed: 7,
+            integrator: Some(CheckpointIntegrator {
+                kind: IntegratorKind::Path,
+                sampler: SamplerKind::Independent,
+                clamp: Some(10.0),
+            }),
             scene: PathBuf::from("/tmp/a scene.toml"),
             output: PathBuf::from("out.png"),
             tiles,
@@ -197,7 +285,50 @@ mod tests {
             let e = Checkpoint::load(&path).unwrap_err();
             assert!(e.contains("not a snell checkpoint"), "{e}");
         }
+        // An integrator this snell does not have is refused by name.
+        let at = MAGIC.len() + 8 + 12 + 8;
+        let mut other = bytes.clone();
+        other[at] = 7;
+        std::fs::write(&path, &other).unwrap();
+        let e = Checkpoint::load(&path).unwrap_err();
+        assert!(e.contains("names an integrator"), "{e}");
         std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    /// An earlier snell's checkpoint (version 1, without the integrator) is read, its
+    /// integrator left to the scene and the command line.
+    #[test]
+    fn version_1_files_are_read() {
+        let mut v1 = MAGIC_1.to_vec();
+        v1.extend_from_slice(&42u64.to_le_bytes());
+        for v in [32u32, 16, 4] {
+            v1.extend_from_slice(&v.to_le_bytes());
+        }
+        v1.extend_from_slice(&9u64.to_le_bytes());
+        for p in ["/s.toml", "o.png"] {
+            v1.extend_from_slice(&(p.len() as u32).to_le_bytes());
+            v1.extend_from_slice(p.as_bytes());
+        }
+        let colors = [Color::new(0.25, 1.5, 0.0), Color::new(3.0, 0.125, 7.75)];
+        for v in [1u32, 1, 2] {
+            v1.extend_from_slice(&v.to_le_bytes());
+        }
+        for c in colors {
+            for v in c.to_array() {
+                v1.extend_from_slice(&v.to_le_bytes());
+            }
+        }
+        let path = std::env::temp_dir().join(format!("snell-ckpt1-{}", std::process::id()));
+        std::fs::write(&path, &v1).unwrap();
+        let c = Checkpoint::load(&path).unwrap();
+        std::fs::remove_file(&path).unwrap();
+        assert_eq!(
+            (c.fingerprint, c.width, c.height, c.spp, c.seed),
+            (42, 32, 16, 4, 9)
+        );
+        assert_eq!(c.integrator, None);
+        assert_eq!(c.output, PathBuf::from("o.png"));
+        assert_eq!(c.tiles[&1], colors);
     }
 
     #[test]

@@ -109,6 +109,9 @@ impl RenderJob {
         let s = &mut scene.settings;
         if let Some(c) = resumed {
             (s.width, s.height, s.spp, s.seed) = (c.width, c.height, c.spp, c.seed);
+            if let Some(i) = c.integrator {
+                i.apply(&mut s.integrator);
+            }
         }
         overrides.apply(s);
         check_settings(s, limits)?;
@@ -233,6 +236,7 @@ mod tests {
             height: s.height,
             spp: s.spp,
             seed: s.seed,
+            integrator: Some(crate::checkpoint::CheckpointIntegrator::of(&s.integrator)),
             scene: path.clone(),
             output: "s.png".into(),
             tiles: Default::default(),
@@ -243,6 +247,27 @@ mod tests {
             RenderJob::prepare(&path, &Overrides::default(), &limits, Some(&c)),
             Err(JobError::Settings { .. })
         ));
+        // A checkpoint keeps the integrator a render had from the command line, so a resume
+        // needs no flags again.
+        let path_tracer = Overrides {
+            integrator: Some(crate::scene::IntegratorKind::Path),
+            clamp: Some(4.0),
+            ..Overrides::default()
+        };
+        let job = RenderJob::prepare(&path, &path_tracer, &limits, None).unwrap();
+        let c = Checkpoint {
+            fingerprint: job.fingerprint,
+            integrator: Some(crate::checkpoint::CheckpointIntegrator::of(
+                &job.scene.settings.integrator,
+            )),
+            ..c
+        };
+        let resumed = RenderJob::prepare(&path, &Overrides::default(), &limits, Some(&c)).unwrap();
+        assert_eq!(
+            resumed.scene.settings.integrator,
+            job.scene.settings.integrator
+        );
+        assert_eq!(resumed.fingerprint, job.fingerprint);
         assert_eq!(
             RenderJob::default_output(Path::new("a/cap.day.toml")),
             Path::new("cap.day.png")

@@ -7,12 +7,11 @@
 //! docs/debugging.md.
 
 use super::{Integrator, RayStats, Whitted};
-use crate::film::Image;
+use crate::film::{Film, Image};
 use crate::math::{Color, Vec2, Vec3A};
-use crate::render::RenderError;
+use crate::render::{RenderError, RenderOptions, for_each_tile};
 use crate::scene::{Scene, Skip};
 use crate::texture::srgb_to_linear;
-use rayon::prelude::*;
 
 /// A debug view.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -89,7 +88,7 @@ pub struct AovBuffers {
 }
 
 /// What one pixel's centre ray finds.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, bytemuck::Zeroable)]
 struct Sample {
     normal: Vec3A,
     uv: Vec2,
@@ -100,20 +99,24 @@ struct Sample {
     bounces: u32,
 }
 
-/// Traces the ray through the centre of every pixel and records every view.
+/// Traces the ray through the centre of every pixel and records every view, through the
+/// render loop every render takes.
 pub fn render_aovs(scene: &Scene, threads: Option<usize>) -> Result<AovBuffers, RenderError> {
-    let pool = crate::render::thread_pool(threads)?;
     let (w, h) = (scene.settings.width, scene.settings.height);
-    let rows: Vec<Vec<Sample>> = pool.install(|| {
-        (0..h)
-            .into_par_iter()
-            // A row per job, as the render's tiles: otherwise a thread's long run of rows
-            // cannot be shared at the end, and the other core idles.
-            .with_max_len(1)
-            .map(|y| (0..w).map(|x| sample(scene, x, y)).collect())
-            .collect()
-    });
-    let all: Vec<Sample> = rows.into_iter().flatten().collect();
+    let mut film: Film<Sample> = Film::new(w, h);
+    let options = RenderOptions {
+        threads,
+        progress: &|_| {},
+        cancel: None,
+    };
+    for_each_tile(
+        &mut film,
+        &options,
+        |_| false,
+        |x, y, pixel, _: &mut ()| *pixel = sample(scene, x, y),
+        |_, _| {},
+    )?;
+    let all = crate::render::thread_pool(threads)?.install(|| film.rows(|s| *s));
     Ok(AovBuffers {
         width: w,
         height: h,

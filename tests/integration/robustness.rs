@@ -90,10 +90,27 @@ fn the_command_warns_about_them() {
 #[cfg(unix)]
 #[test]
 fn an_interrupted_render_resumes_to_the_same_bytes() {
-    let dir = scratch("interrupt");
+    interrupted_render_resumes("interrupt", &[]);
+}
+
+/// The same under the path tracer chosen on the command line: the checkpoint keeps the
+/// integrator, so `--resume` alone continues the same render.
+#[cfg(unix)]
+#[test]
+fn an_interrupted_path_traced_render_resumes_without_its_flags() {
+    interrupted_render_resumes("interrupt-path", &["--integrator", "path"]);
+}
+
+#[cfg(unix)]
+fn interrupted_render_resumes(name: &str, flags: &[&str]) {
+    let dir = scratch(name);
     let scene = super::repo("scenes/seed.toml");
     let scene = scene.to_str().unwrap();
-    let size = ["--width", "384", "--height", "384", "--spp", "16", "-q"];
+    let size = [
+        &["--width", "384", "--height", "384", "--spp", "16", "-q"],
+        flags,
+    ]
+    .concat();
     let snell = || Command::new(env!("CARGO_BIN_EXE_snell"));
     let whole = snell()
         .args([&["render", scene, "-o", "whole.png"][..], &size].concat())
@@ -270,6 +287,7 @@ fn a_checkpoint_of_another_scene_or_size_is_refused() {
         height: 30,
         spp: 1,
         seed: 0,
+        integrator: None,
         scene: scene.into(),
         output: dir.join("o.png"),
         tiles: Default::default(),

@@ -4,7 +4,7 @@
 use crate::args::RenderArgs;
 use crate::{job_error, usage_error};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
-use snell::checkpoint::Checkpoint;
+use snell::checkpoint::{Checkpoint, CheckpointIntegrator};
 use snell::integrator::aov::{Aov, render_aovs};
 use snell::job::RenderJob;
 use snell::output::{ExrLayer, OutputError, OutputFormat, PendingOutput, encode_exr_layers};
@@ -144,6 +144,7 @@ pub(crate) fn render(args: RenderArgs) -> ExitCode {
         height: scene.settings.height,
         spp: scene.settings.spp,
         seed: scene.settings.seed,
+        integrator: Some(CheckpointIntegrator::of(&scene.settings.integrator)),
         scene: std::fs::canonicalize(&scene_path).unwrap_or_else(|_| scene_path.clone()),
         output: std::path::absolute(&out_path).unwrap_or_else(|_| out_path.clone()),
         tiles,
@@ -174,10 +175,9 @@ pub(crate) fn render(args: RenderArgs) -> ExitCode {
             threads,
             progress: &|n| bar.set_position(n),
             cancel: Some(&STOP),
-            store: Some(&store),
         };
         let integrator = snell::integrator::chosen(scene.settings.integrator.kind);
-        let r = snell::render::render_with(&scene, integrator, &options);
+        let r = snell::render::render_with(&scene, integrator, &options, Some(&store));
         finished.store(true, Ordering::SeqCst);
         r
     });

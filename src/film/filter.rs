@@ -1,7 +1,6 @@
-//! The film: pixels in linear RGB and the reconstruction filter that weights each sample by
-//! its distance from the pixel centre.
+//! The reconstruction filter: where a pixel's samples are placed around its centre, and the
+//! sign of each one's weight.
 
-use crate::math::Color;
 use serde::{Deserialize, Serialize};
 
 /// Reconstruction filter shapes.
@@ -170,33 +169,6 @@ fn exact_weight(kind: FilterKind, r: f32, x: f32) -> f32 {
                     / 6.0
             }
         }
-    }
-}
-
-/// A rendered image: linear RGB, row 0 at the top.
-#[derive(Clone, Debug, PartialEq)]
-pub struct Image {
-    /// Width in pixels.
-    pub width: u32,
-    /// Height in pixels.
-    pub height: u32,
-    /// Pixels, row by row.
-    pub pixels: Vec<Color>,
-}
-
-impl Image {
-    /// A black image.
-    pub fn new(width: u32, height: u32) -> Self {
-        Image {
-            width,
-            height,
-            pixels: vec![Color::ZERO; width as usize * height as usize],
-        }
-    }
-
-    /// The pixel at `(x, y)`.
-    pub fn get(&self, x: u32, y: u32) -> Color {
-        self.pixels[y as usize * self.width as usize + x as usize]
     }
 }
 

@@ -1,0 +1,175 @@
+//! A pass over the film: some more samples of every pixel added to the sums a [`Film`]
+//! holds, for a render that shows its picture as it improves (a preview) or stops and goes
+//! on later. Passes of samples `0..a`, `a..b`, ... give the bytes one render of `0..b`
+//! gives, at any thread count.
+
+use super::tiles::for_each_tile;
+use super::{BadSamples, RenderError, RenderOptions, TilesDone, add_pixel};
+use crate::film::Film;
+use crate::integrator::{Integrator, RayStats};
+use crate::scene::Scene;
+use std::ops::Range;
+
+/// What a pass did.
+#[derive(Clone, Debug, Default)]
+pub struct PassStats {
+    /// The rays traced.
+    pub rays: RayStats,
+    /// Samples that came out NaN or infinite (left out of their pixels).
+    pub bad_samples: BadSamples,
+    /// Tiles that took this pass's samples: fewer than the film's when the pass was
+    /// cancelled (the others are as they were).
+    pub tiles_done: u32,
+}
+
+/// Why a pass cannot run.
+#[derive(Debug, thiserror::Error)]
+pub enum PassError {
+    /// The thread pool could not be made.
+    #[error(transparent)]
+    Render(#[from] RenderError),
+    /// The film is not the scene's size.
+    #[error("the film is {0} x {1}, the scene's image {2} x {3}")]
+    Size(u32, u32, u32, u32),
+    /// The integrator places its samples on a grid fixed by the sample count (Whitted's
+    /// strata), so it cannot add some of them at a time.
+    #[error(
+        "this integrator renders all of a pixel's samples at once (samples 0..{0}); passes of some of them need one that takes a sampler (the path tracer)"
+    )]
+    NotProgressive(u32),
+}
+
+/// Adds samples `samples` of every pixel of `scene` to `film`, as `options` say (threads,
+/// progress, cancellation). Whitted takes only the whole range `0..spp`, in one pass.
+pub fn render_pass(
+    scene: &Scene,
+    integrator: &dyn Integrator,
+    film: &mut Film,
+    samples: Range<u32>,
+    options: &RenderOptions,
+) -> Result<PassStats, PassError> {
+    let s = &scene.settings;
+    if (film.width(), film.height()) != (s.width, s.height) {
+        return Err(PassError::Size(
+            film.width(),
+            film.height(),
+            s.width,
+            s.height,
+        ));
+    }
+    if !integrator.uses_sampler() && samples != (0..s.spp) {
+        return Err(PassError::NotProgressive(s.spp));
+    }
+    let grid = film.grid();
+    let tiles = for_each_tile(
+        film,
+        options,
+        |_| false,
+        |x, y, pixel, (rays, bad): &mut (RayStats, BadSamples)| {
+            add_pixel(scene, integrator, x, y, samples.clone(), pixel, rays, bad);
+        },
+        |_, _| {},
+    )?;
+    let done = TilesDone::gather(tiles, grid);
+    Ok(PassStats {
+        rays: done.rays,
+        bad_samples: done.bad_samples,
+        tiles_done: done.tiles as u32,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::integrator::{Path, Whitted};
+    use crate::render::render;
+    use crate::scene::{Format, load_str};
+
+    fn scene(spp: u32) -> Scene {
+        let text = format!(
+            "[image]\nwidth = 20\nheight = 14\nsamples = {spp}\nfilter = {{ type = \"mitchell\" }}\n\
+             [integrator]\ntype = \"path\"\n\
+             [camera]\nposition = [0, 1, 5]\nlook_at = [0, 0, 0]\nfov = 40\n\
+             [materials.lamp]\ntype = \"diffuse\"\ncolor = 0\nemission = 4\n\
+             [materials.white]\ntype = \"diffuse\"\ncolor = 0.7\n\
+             [materials.gold]\ntype = \"conductor\"\nmetal = \"Au\"\nroughness = 0.2\n\
+             [[objects]]\ntype = \"sphere\"\ncenter = [0, 3, 0]\nradius = 0.5\nmaterial = \"lamp\"\n\
+             [[objects]]\ntype = \"sphere\"\nradius = 0.8\nmaterial = \"gold\"\n\
+             [[objects]]\ntype = \"plane\"\npoint = [0, -0.8, 0]\nmaterial = \"white\"\n"
+        );
+        load_str(
+            &text,
+            std::path::Path::new("t.toml"),
+            std::path::Path::new("."),
+            Format::Toml,
+        )
+        .unwrap()
+    }
+
+    fn options(threads: usize) -> RenderOptions<'static> {
+        RenderOptions {
+            threads: Some(threads),
+            progress: &|_| {},
+            cancel: None,
+        }
+    }
+
+    fn bits(p: &[crate::math::Color]) -> Vec<u32> {
+        p.iter()
+            .flat_map(|c| c.to_array().map(f32::to_bits))
+            .collect()
+    }
+
+    /// Passes of 1, 4 and 7 samples on one and on two threads leave the film as a render
+    /// of all 12 at once does, to the bit; and the film is the image that render writes.
+    #[test]
+    fn passes_add_up_to_one_render() {
+        let whole = render(&scene(12), &Path, Some(2), &|_| {}).unwrap();
+        let scene = scene(12);
+        let mut film = Film::new(20, 14);
+        let mut rays = 0;
+        for (range, threads) in [(0..1, 1), (1..5, 2), (5..12, 1)] {
+            let stats = render_pass(&scene, &Path, &mut film, range, &options(threads)).unwrap();
+            assert_eq!(stats.tiles_done, 2);
+            rays += stats.rays.camera;
+        }
+        assert_eq!(rays, 12 * 20 * 14);
+        assert!(film.pixels().iter().all(|p| p.samples == 12));
+        assert_eq!(bits(&film.image().pixels), bits(&whole.image.pixels));
+        // Fewer samples are another picture.
+        let mut short = Film::new(20, 14);
+        render_pass(&scene, &Path, &mut short, 0..5, &options(2)).unwrap();
+        assert_ne!(bits(&short.image().pixels), bits(&whole.image.pixels));
+    }
+
+    /// Whitted goes through the same loop in one pass of all its samples: the image
+    /// `render` gives.
+    #[test]
+    fn whitted_passes_all_its_samples_at_once() {
+        let mut scene = scene(9);
+        scene.settings.integrator.kind = crate::scene::IntegratorKind::Whitted;
+        let whole = render(&scene, &Whitted, Some(1), &|_| {}).unwrap();
+        let mut film = Film::new(20, 14);
+        render_pass(&scene, &Whitted, &mut film, 0..9, &options(2)).unwrap();
+        assert!(film.pixels().iter().all(|p| p.samples == 9));
+        assert_eq!(bits(&film.image().pixels), bits(&whole.image.pixels));
+        for range in [0..1, 1..9, 0..4] {
+            assert!(matches!(
+                render_pass(&scene, &Whitted, &mut film, range, &options(1)),
+                Err(PassError::NotProgressive(9))
+            ));
+        }
+    }
+
+    #[test]
+    fn a_pass_refuses_another_size() {
+        let scene = scene(4);
+        let mut film = Film::new(8, 8);
+        assert!(matches!(
+            render_pass(&scene, &Path, &mut film, 0..1, &options(1)),
+            Err(PassError::Size(8, 8, 20, 14))
+        ));
+        assert!(film.pixels().iter().all(|p| p.samples == 0));
+        assert_eq!(film.image().pixels[0], crate::math::Color::ZERO);
+    }
+}
