@@ -106,7 +106,7 @@ impl Path {
             });
             let mut added = Color::ZERO;
             if let Some(e) = &m.emission {
-                let le = e.emitted(front);
+                let le = e.emitted(front, &scene.textures, &hit.tex);
                 if le != Color::ZERO {
                     let (w, light_pdf) =
                         self.emitter_weight(scene, &hit, specular, prev_pdf, prev_point);
@@ -270,7 +270,7 @@ impl Path {
         ul: Vec2,
         rays: &mut RayStats,
     ) -> (Color, Option<LightSampleRecord>) {
-        let Some(c) = scene.light_sampler.sample(
+        let Some(mut c) = scene.light_sampler.sample(
             &scene.lights,
             &scene.area_lights,
             hit.point,
@@ -280,6 +280,21 @@ impl Path {
         ) else {
             return (Color::ZERO, None);
         };
+        // A textured light's radiance is read where the sample lies on it.
+        if let Some(light) = c
+            .light
+            .checked_sub(scene.lights.len())
+            .map(|a| &scene.area_lights[a])
+            && light.texture.is_some()
+        {
+            let side = if c.to_light.dot(v.ng) > 0.0 {
+                v.ng
+            } else {
+                -v.ng
+            };
+            let origin = offset_ray_origin(hit.point, side);
+            c.radiance = scene.emission_at(light, origin, c.to_light, c.distance);
+        }
         if c.pdf.is_nan() || c.pdf <= 0.0 {
             return (Color::ZERO, None);
         }

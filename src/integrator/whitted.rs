@@ -239,13 +239,14 @@ impl Whitted {
             rec.hit(hit_record(scene, hit, entering, base));
         }
 
-        let t = m.transparency;
-        let mut out = scene.ambient * base * (m.ambient * (1.0 - t));
+        let terms = m.terms_at(&scene.textures, &hit.tex);
+        let t = terms.transparency;
+        let mut out = scene.ambient * base * (terms.ambient * (1.0 - t));
         if R::ACTIVE {
             rec.ambient(out);
         }
         if let Some(e) = &m.emission {
-            let emitted = e.emitted(entering);
+            let emitted = e.emitted(entering, &scene.textures, &hit.tex);
             out += emitted;
             if R::ACTIVE && emitted != Color::ZERO {
                 rec.note(format!("emits {:?}", emitted.to_array()));
@@ -282,11 +283,11 @@ impl Whitted {
             }
             // What this light would add if nothing were in the way: diffuse (weighed by the
             // opaque part) and the Phong highlight.
-            let diffuse = base * (m.diffuse * cos * (1.0 - t));
+            let diffuse = base * (terms.diffuse * cos * (1.0 - t));
             let mut specular = Color::ZERO;
-            if m.specular != Color::ZERO {
+            if terms.specular != Color::ZERO {
                 let r = reflect(-ls.to_light, ns);
-                specular = m.specular * phong_lobe(r.dot(view), m.shininess);
+                specular = terms.specular * phong_lobe(r.dot(view), terms.shininess);
             }
             let direct = diffuse + specular;
             // A shadow ray cannot change what is too faint to see (clear glass away from its
@@ -322,7 +323,7 @@ impl Whitted {
             }
         }
         if seg.depth >= scene.settings.max_depth {
-            if R::ACTIVE && (t > 0.0 || m.reflectivity > 0.0) {
+            if R::ACTIVE && (t > 0.0 || terms.reflectivity > 0.0) {
                 rec.note(format!(
                     "no reflected or refracted rays: max_depth {} reached",
                     scene.settings.max_depth
@@ -331,7 +332,7 @@ impl Whitted {
             return out;
         }
         // The mirror's share in its tint (white but for metals), glass's by Fresnel.
-        let mut reflect_weight = Color::splat((1.0 - t) * m.reflectivity) * m.mirror_tint;
+        let mut reflect_weight = Color::splat((1.0 - t) * terms.reflectivity) * m.mirror_tint;
         if t > 0.0 {
             let eta = if entering { 1.0 / m.ior } else { m.ior };
             let cos_i = view.dot(ns);
@@ -463,7 +464,8 @@ impl Whitted {
             // refracted ray's: weigh both crossings as seen from outside (Fresnel is the same
             // both ways along a real refracted path), which can never be total reflection.
             let cos = dir.dot(n).abs();
-            let mut f = Color::splat(m.transparency * (1.0 - fresnel_dielectric(cos, 1.0 / m.ior)));
+            let transparency = m.terms_at(&scene.textures, &h.tex).transparency;
+            let mut f = Color::splat(transparency * (1.0 - fresnel_dielectric(cos, 1.0 / m.ior)));
             if entering {
                 f *= scene.textures[m.texture].eval(&h.tex);
                 entered_at = h.point;
@@ -491,6 +493,7 @@ impl Whitted {
 /// The record of a hit.
 fn hit_record(scene: &Scene, hit: &Hit, entering: bool, base: Color) -> HitRecord {
     let m = scene.material_at(hit);
+    let terms = m.terms_at(&scene.textures, &hit.tex);
     HitRecord {
         object: scene.objects[hit.object].name.clone(),
         object_index: hit.object,
@@ -507,12 +510,12 @@ fn hit_record(scene: &Scene, hit: &Hit, entering: bool, base: Color) -> HitRecor
             .unwrap_or_default(),
         terms: MaterialTerms {
             color: base.to_array(),
-            ambient: m.ambient,
-            diffuse: m.diffuse,
-            specular: m.specular.to_array(),
-            shininess: m.shininess,
-            reflectivity: m.reflectivity,
-            transparency: m.transparency,
+            ambient: terms.ambient,
+            diffuse: terms.diffuse,
+            specular: terms.specular.to_array(),
+            shininess: terms.shininess,
+            reflectivity: terms.reflectivity,
+            transparency: terms.transparency,
             ior: m.ior,
             absorption: m.absorption.to_array(),
         },

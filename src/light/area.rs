@@ -36,8 +36,12 @@ impl Emitter {
 pub struct AreaLight {
     /// Its shape, in world space.
     pub emitter: Emitter,
-    /// Radiance leaving it, linear RGB.
+    /// Radiance leaving it, linear RGB; where a texture gives it, the texture's mean (its
+    /// power is taken from this).
     pub radiance: Color,
+    /// The texture (index into the scene's list) giving the radiance point by point, if any:
+    /// a sample's radiance is then read there ([`crate::Scene::emission_at`]).
+    pub texture: Option<usize>,
     /// Whether both sides emit.
     pub two_sided: bool,
     /// The object it is.
@@ -145,6 +149,7 @@ mod tests {
         AreaLight {
             emitter,
             radiance: Color::ONE,
+            texture: None,
             two_sided: false,
             object: 0,
         }

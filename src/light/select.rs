@@ -141,6 +141,7 @@ mod tests {
         let disk = |r: f32| AreaLight {
             emitter: Emitter::Disk(Disk::new(Vec3A::ZERO, Vec3A::Z, 1.0)),
             radiance: Color::splat(r),
+            texture: None,
             two_sided: false,
             object: 0,
         };

@@ -4,7 +4,7 @@
 //! tint), with a highlight as wide as the roughness; from roughness 0.5 up, no mirror and a
 //! diffuse term of that colour instead.
 
-use super::{Emission, Material, Scalar, Surface, shininess_of};
+use super::{ColorParam, Emission, Material, PhongTerms, Scalar, Surface, shininess_of};
 use crate::bsdf::microfacet::Ggx;
 use crate::bsdf::{self, Bsdf, ConductorFresnel, fresnel};
 use crate::math::Color;
@@ -13,8 +13,11 @@ use crate::texture::{Texture, TexturePoint};
 /// A conductor's parameters.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Conductor {
-    /// Reflectance by angle.
+    /// Reflectance by angle (where `index` is textured, of the textures' means: what
+    /// Whitted reads).
     pub fresnel: ConductorFresnel,
+    /// The complex index `[eta, k]` where a texture gives either, read point by point.
+    pub index: Option<[ColorParam; 2]>,
     /// GGX alpha.
     pub roughness: Scalar,
 }
@@ -40,11 +43,14 @@ impl Conductor {
         let f0 = self.normal_reflectance() * tint;
         let mirror = (1.0 - alpha / 0.5).clamp(0.0, 1.0);
         Material {
-            ambient: 1.0 - mirror,
-            diffuse: 1.0 - mirror,
-            specular: f0,
-            shininess: shininess_of(alpha),
-            reflectivity: mirror,
+            terms: PhongTerms {
+                ambient: 1.0 - mirror,
+                diffuse: 1.0 - mirror,
+                specular: f0,
+                shininess: shininess_of(alpha),
+                reflectivity: mirror,
+                ..PhongTerms::DEFAULT
+            },
             mirror_tint: f0,
             ..Material::base(texture, Surface::Conductor(self), emission)
         }
@@ -52,8 +58,15 @@ impl Conductor {
 
     /// The BSDF at a point whose tint is `tint`.
     pub fn bsdf(&self, tint: Color, textures: &[Texture], p: &TexturePoint) -> Bsdf {
+        let fresnel = match self.index {
+            Some([eta, k]) => ConductorFresnel::Complex {
+                eta: eta.at(textures, p),
+                k: k.at(textures, p),
+            },
+            None => self.fresnel,
+        };
         Bsdf::Conductor(bsdf::Conductor {
-            fresnel: self.fresnel,
+            fresnel,
             distribution: Ggx::isotropic(self.roughness.at(textures, p).clamp(0.0, 1.0)),
             tint: tint.clamp(Color::ZERO, Color::ONE),
         })

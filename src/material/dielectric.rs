@@ -3,7 +3,7 @@
 //! absorption, a white highlight as wide as the roughness (a rough surface refracts as a
 //! smooth one there: Whitted traces one ray).
 
-use super::{Emission, Material, Scalar, Surface, shininess_of};
+use super::{Emission, Material, PhongTerms, Scalar, Surface, shininess_of};
 use crate::bsdf::microfacet::Ggx;
 use crate::bsdf::{self, Bsdf};
 use crate::math::Color;
@@ -28,11 +28,14 @@ impl Dielectric {
         emission: Option<Emission>,
     ) -> Material {
         Material {
-            ambient: 0.0,
-            diffuse: 0.0,
-            specular: Color::ONE,
-            shininess: shininess_of(alpha),
-            transparency: 1.0,
+            terms: PhongTerms {
+                ambient: 0.0,
+                diffuse: 0.0,
+                specular: Color::ONE,
+                shininess: shininess_of(alpha),
+                transparency: 1.0,
+                ..PhongTerms::DEFAULT
+            },
             ior,
             absorption,
             ..Material::base(texture, Surface::Dielectric(self), emission)

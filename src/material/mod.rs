@@ -6,6 +6,7 @@
 pub mod conductor;
 pub mod dielectric;
 pub mod diffuse;
+pub mod param;
 pub mod phong;
 pub mod plastic;
 pub mod thin;
@@ -13,27 +14,20 @@ pub mod thin;
 use crate::bsdf::Bsdf;
 use crate::math::Color;
 use crate::texture::{Texture, TexturePoint};
+use std::borrow::Cow;
+
+pub use param::{ColorParam, Scalar};
 
 /// How a surface responds to light. Every coefficient is dimensionless.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Material {
     /// Index of the texture that gives the surface colour.
     pub texture: usize,
-    /// Whitted: multiplies the global ambient light (times the surface colour).
-    pub ambient: f32,
-    /// Whitted: Lambertian term, light times surface colour times `cos` at the surface.
-    pub diffuse: f32,
-    /// Whitted: Phong highlight colour.
-    pub specular: Color,
-    /// Whitted: Phong exponent, larger is a smaller, sharper highlight.
-    pub shininess: f32,
-    /// Whitted: mirror reflection weight, in `[0, 1]`.
-    pub reflectivity: f32,
+    /// The Phong terms Whitted reads (and the path tracer's reading of a Phong material),
+    /// where no texture gives them: see [`Material::terms_at`].
+    pub terms: PhongTerms,
     /// Whitted: the colour of the mirror reflection (white but for metals).
     pub mirror_tint: Color,
-    /// Fraction of light that passes into the surface, in `[0, 1]`; Fresnel splits it
-    /// between reflection and refraction (Whitted; the path tracer's Phong mix).
-    pub transparency: f32,
     /// Index of refraction of the inside of the solid.
     pub ior: f32,
     /// Beer-Lambert absorption coefficient per scene unit travelled inside, per channel.
@@ -42,45 +36,101 @@ pub struct Material {
     pub surface: Surface,
     /// Light the surface gives off, if any.
     pub emission: Option<Emission>,
+    /// The Phong terms read from textures, where the file names textures for them (the
+    /// constants above are used elsewhere).
+    pub textured: Option<Box<TexturedTerms>>,
 }
 
-/// Light given off by a surface: constant radiance on its front side, or on both.
+/// The Phong terms at a surface point: the material's constants, or its textures read
+/// there (see [`Material::terms_at`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PhongTerms {
+    /// Multiplies the global ambient light (times the surface colour).
+    pub ambient: f32,
+    /// Lambertian term.
+    pub diffuse: f32,
+    /// Highlight colour.
+    pub specular: Color,
+    /// Highlight exponent.
+    pub shininess: f32,
+    /// Mirror reflection weight, in `[0, 1]`.
+    pub reflectivity: f32,
+    /// Fraction of light that passes into the surface, in `[0, 1]`; Fresnel splits it
+    /// between reflection and refraction.
+    pub transparency: f32,
+}
+
+impl PhongTerms {
+    /// Whitted's defaults: ambient 1, diffuse 0.8, no highlight (exponent 50), no mirror,
+    /// opaque.
+    pub const DEFAULT: PhongTerms = PhongTerms {
+        ambient: 1.0,
+        diffuse: 0.8,
+        specular: Color::ZERO,
+        shininess: 50.0,
+        reflectivity: 0.0,
+        transparency: 0.0,
+    };
+}
+
+/// Textures (indices into the scene's list) that give Phong terms point by point.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct TexturedTerms {
+    /// `ambient`.
+    pub ambient: Option<usize>,
+    /// `diffuse`.
+    pub diffuse: Option<usize>,
+    /// `specular`.
+    pub specular: Option<usize>,
+    /// `shininess`.
+    pub shininess: Option<usize>,
+    /// `reflectivity`.
+    pub reflectivity: Option<usize>,
+    /// `transparency`.
+    pub transparency: Option<usize>,
+}
+
+impl TexturedTerms {
+    /// `terms` with what the textures give at `p` in place of the terms they stand for.
+    /// Out of line: most materials have no textured terms, and Whitted's shading, which
+    /// asks at every hit, stays short.
+    #[cold]
+    #[inline(never)]
+    fn read(&self, mut terms: PhongTerms, textures: &[Texture], p: &TexturePoint) -> PhongTerms {
+        let scalar = |slot: &mut f32, tex: Option<usize>, hi: f32| {
+            if let Some(i) = tex {
+                *slot = Scalar::Texture(i).at(textures, p).clamp(0.0, hi);
+            }
+        };
+        scalar(&mut terms.ambient, self.ambient, f32::MAX);
+        scalar(&mut terms.diffuse, self.diffuse, f32::MAX);
+        scalar(&mut terms.shininess, self.shininess, f32::MAX);
+        scalar(&mut terms.reflectivity, self.reflectivity, 1.0);
+        scalar(&mut terms.transparency, self.transparency, 1.0);
+        if let Some(i) = self.specular {
+            terms.specular = textures[i].eval(p).max(Color::ZERO);
+        }
+        terms
+    }
+}
+
+/// Light given off by a surface, on its front side or on both.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Emission {
-    /// Radiance, linear RGB (per unit area and solid angle).
-    pub radiance: Color,
+    /// Radiance, linear RGB (per unit area and solid angle), constant or textured.
+    pub radiance: ColorParam,
     /// Whether the back side emits too.
     pub two_sided: bool,
 }
 
 impl Emission {
-    /// The radiance leaving the side of the surface that `front` says.
+    /// The radiance leaving the side of the surface that `front` says, at point `p`.
     #[inline]
-    pub fn emitted(&self, front: bool) -> Color {
+    pub fn emitted(&self, front: bool, textures: &[Texture], p: &TexturePoint) -> Color {
         if front || self.two_sided {
-            self.radiance
+            self.radiance.at(textures, p)
         } else {
             Color::ZERO
-        }
-    }
-}
-
-/// A scalar parameter: a constant or the mean of a texture's channels.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Scalar {
-    /// The same everywhere.
-    Value(f32),
-    /// Index of a texture in the scene's list.
-    Texture(usize),
-}
-
-impl Scalar {
-    /// The value at a surface point.
-    #[inline]
-    pub fn at(&self, textures: &[Texture], p: &TexturePoint) -> f32 {
-        match *self {
-            Scalar::Value(v) => v,
-            Scalar::Texture(t) => textures[t].eval(p).element_sum() / 3.0,
         }
     }
 }
@@ -103,10 +153,22 @@ pub enum Surface {
 }
 
 impl Material {
+    /// The Phong terms at a surface point: the constants, with what textures give in
+    /// place of those the file names textures for. Borrowed where no texture gives any
+    /// (most materials): Whitted asks at every hit, and copying them there cost the seed
+    /// scene 3 %.
+    #[inline(always)]
+    pub fn terms_at(&self, textures: &[Texture], p: &TexturePoint) -> Cow<'_, PhongTerms> {
+        match &self.textured {
+            None => Cow::Borrowed(&self.terms),
+            Some(t) => Cow::Owned(t.read(self.terms, textures, p)),
+        }
+    }
+
     /// The BSDF at a surface point, whose textured colour is `base`.
     pub fn bsdf(&self, textures: &[Texture], p: &TexturePoint, base: Color) -> Bsdf {
         match &self.surface {
-            Surface::Phong => phong::bsdf(self, base),
+            Surface::Phong => phong::bsdf(self, &self.terms_at(textures, p), base),
             Surface::Diffuse => diffuse::bsdf(base),
             Surface::Conductor(c) => c.bsdf(base, textures, p),
             Surface::Dielectric(d) => d.bsdf(self, textures, p),
@@ -115,16 +177,64 @@ impl Material {
         }
     }
 
+    /// Every texture the material reads (its colour's, and those of textured parameters),
+    /// as indices into the scene's list.
+    pub fn textures(&self) -> Vec<usize> {
+        let mut out = vec![self.texture];
+        let mut scalar = |s: &Scalar| {
+            if let Scalar::Texture(t) = s {
+                out.push(*t);
+            }
+        };
+        match &self.surface {
+            Surface::Conductor(c) => scalar(&c.roughness),
+            Surface::Dielectric(d) => scalar(&d.roughness),
+            Surface::Plastic(p) => scalar(&p.roughness),
+            Surface::Phong | Surface::Diffuse | Surface::Thin(_) => {}
+        }
+        let mut color = |c: &ColorParam| {
+            if let ColorParam::Texture(t) = c {
+                out.push(*t);
+            }
+        };
+        if let Surface::Conductor(c) = &self.surface {
+            c.index.iter().flatten().for_each(&mut color);
+        }
+        if let Some(e) = &self.emission {
+            color(&e.radiance);
+        }
+        if let Some(t) = &self.textured {
+            out.extend(
+                [
+                    t.ambient,
+                    t.diffuse,
+                    t.specular,
+                    t.shininess,
+                    t.reflectivity,
+                    t.transparency,
+                ]
+                .into_iter()
+                .flatten(),
+            );
+        }
+        out
+    }
+
     /// The absorption inside the solid, for a path that has crossed into it, or `None`
     /// where the material lets no light in or absorbs nothing.
     pub fn absorption_inside(&self) -> Option<Color> {
         (self.absorption != Color::ZERO).then_some(self.absorption)
     }
 
-    /// True when the surface lets light through (refraction and lighter shadows).
+    /// True when the surface may let light through somewhere (refraction and lighter
+    /// shadows).
     #[inline]
     pub fn is_transparent(&self) -> bool {
-        self.transparency > 0.0
+        self.terms.transparency > 0.0
+            || self
+                .textured
+                .as_ref()
+                .is_some_and(|t| t.transparency.is_some())
     }
 
     /// A material with Whitted's defaults (white, ambient 1, diffuse 0.8, nothing else),
@@ -132,17 +242,13 @@ impl Material {
     pub(crate) fn base(texture: usize, surface: Surface, emission: Option<Emission>) -> Self {
         Material {
             texture,
-            ambient: 1.0,
-            diffuse: 0.8,
-            specular: Color::ZERO,
-            shininess: 50.0,
-            reflectivity: 0.0,
+            terms: PhongTerms::DEFAULT,
             mirror_tint: Color::ONE,
-            transparency: 0.0,
             ior: 1.5,
             absorption: Color::ZERO,
             surface,
             emission,
+            textured: None,
         }
     }
 }

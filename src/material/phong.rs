@@ -6,7 +6,7 @@
 //! matches `shininess` where `specular` is not black. `ambient` is Whitted's only: the path
 //! tracer computes the light that ambient stands in for.
 
-use super::{Material, alpha_of};
+use super::{Material, PhongTerms, alpha_of};
 use crate::bsdf::microfacet::Ggx;
 use crate::bsdf::{
     Bsdf, Conductor, ConductorFresnel, Dielectric, Lambert, PhongBase, PhongMix, Plastic,
@@ -17,15 +17,15 @@ use crate::math::Color;
 /// The coat's index of refraction (a typical varnish or plastic).
 pub const COAT_IOR: f32 = 1.5;
 
-/// The BSDF at a point whose colour is `base`.
-pub fn bsdf(m: &Material, base: Color) -> Bsdf {
-    let r = (base * m.diffuse).clamp(Color::ZERO, Color::ONE);
-    let base = if m.specular.max_element() > 0.0 {
+/// The BSDF at a point whose colour is `base` and Phong terms `terms`.
+pub fn bsdf(m: &Material, terms: &PhongTerms, base: Color) -> Bsdf {
+    let r = (base * terms.diffuse).clamp(Color::ZERO, Color::ONE);
+    let base = if terms.specular.max_element() > 0.0 {
         PhongBase::Plastic(Plastic {
             r,
             eta: COAT_IOR,
             fdr_int: coat_fdr(),
-            distribution: Ggx::isotropic(alpha_of(m.shininess)),
+            distribution: Ggx::isotropic(alpha_of(terms.shininess)),
         })
     } else {
         PhongBase::Lambert(Lambert { r })
@@ -41,7 +41,7 @@ pub fn bsdf(m: &Material, base: Color) -> Bsdf {
             eta: m.ior,
             distribution: Ggx::isotropic(0.0),
         },
-        weights: PhongMix::weights(m.reflectivity, m.transparency),
+        weights: PhongMix::weights(terms.reflectivity, terms.transparency),
     })
 }
 

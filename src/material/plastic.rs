@@ -3,7 +3,7 @@
 //! highlight as wide as the roughness, and (smooth only) a mirror of the coat's reflectance
 //! at normal incidence.
 
-use super::{Emission, Material, Scalar, Surface, shininess_of};
+use super::{Emission, Material, PhongTerms, Scalar, Surface, shininess_of};
 use crate::bsdf::microfacet::Ggx;
 use crate::bsdf::{self, Bsdf, internal_diffuse_reflectance};
 use crate::math::Color;
@@ -38,11 +38,14 @@ impl Plastic {
         let f0 = ((ior - 1.0) / (ior + 1.0)).powi(2);
         let mirror = if alpha == 0.0 { f0 } else { 0.0 };
         Material {
-            diffuse: 1.0 - mirror,
-            ambient: 1.0 - mirror,
-            specular: Color::ONE,
-            shininess: shininess_of(alpha),
-            reflectivity: mirror,
+            terms: PhongTerms {
+                diffuse: 1.0 - mirror,
+                ambient: 1.0 - mirror,
+                specular: Color::ONE,
+                shininess: shininess_of(alpha),
+                reflectivity: mirror,
+                ..PhongTerms::DEFAULT
+            },
             ior,
             ..Material::base(texture, Surface::Plastic(self), emission)
         }

@@ -397,6 +397,31 @@ impl Scene {
         best.map(|(i, h)| self.hit_details(ray, i, h, false))
     }
 
+    /// The radiance that area light `light` sends back along the ray from `origin` (unit
+    /// direction `dir`) to a point a light sample chose `distance` away: its constant
+    /// radiance, or where a texture gives it, the texture read where the ray meets the
+    /// light's object (found by testing that object alone). Black where the ray misses it,
+    /// which only a grazing ray at the light's rim can, where it sends next to nothing.
+    pub fn emission_at(
+        &self,
+        light: &crate::light::AreaLight,
+        origin: Vec3A,
+        dir: Vec3A,
+        distance: f32,
+    ) -> Color {
+        let Some(t) = light.texture else {
+            return light.radiance;
+        };
+        let ray = Ray::new(origin, dir);
+        let reach = distance * 1.001 + 1e-4;
+        self.objects[light.object]
+            .intersect(&ray, reach)
+            .map_or(Color::ZERO, |h| {
+                let hit = self.hit_details(&ray, light.object, h, true);
+                self.textures[t].eval(&hit.tex)
+            })
+    }
+
     fn hit_details(&self, ray: &Ray, i: usize, h: ShapeHit, force_uv: bool) -> Hit {
         let o = &self.objects[i];
         let want_uv = force_uv || self.needs_uv[i];

@@ -8,7 +8,7 @@ use crate::bsdf::ConductorFresnel;
 use crate::material::conductor::Conductor;
 use crate::material::dielectric::Dielectric;
 use crate::material::plastic::Plastic;
-use crate::material::{Emission, Material, Scalar, Surface, thin};
+use crate::material::{ColorParam, Emission, Material, Scalar, Surface, thin};
 use crate::math::Color;
 use crate::mesh_file::MtlMaterial;
 use crate::texture::{ColorSpace, ImageData, Mapping, Pattern, Texture};
@@ -109,13 +109,14 @@ impl Builder<'_> {
             m.ke.map(rgb)
                 .filter(|e| e.max_element() > 0.0)
                 .map(|radiance| Emission {
-                    radiance,
+                    radiance: ColorParam::Value(radiance),
                     two_sided: false,
                 });
         let ior = m.ni.filter(|n| *n > 0.0 && n.is_finite()).unwrap_or(1.5);
         match kind {
             MtlType::Metal(alpha) => Conductor {
                 fresnel: ConductorFresnel::One,
+                index: None,
                 roughness: Scalar::Value(alpha),
             }
             .material(texture, kd.min(Color::ONE), alpha, emission),
@@ -132,19 +133,19 @@ impl Builder<'_> {
                 let ks = m.ks.map_or(Color::ZERO, rgb);
                 let (shininess, highlight_weight) = mtl_highlight(m.ns);
                 let mut out = Material::base(texture, Surface::Phong, emission);
-                out.diffuse = if illum == 0 { 0.0 } else { 1.0 };
-                out.specular = if highlight {
+                out.terms.diffuse = if illum == 0 { 0.0 } else { 1.0 };
+                out.terms.specular = if highlight {
                     ks * highlight_weight
                 } else {
                     Color::ZERO
                 };
-                out.shininess = shininess;
-                out.reflectivity = if illum == 3 {
+                out.terms.shininess = shininess;
+                out.terms.reflectivity = if illum == 3 {
                     ks.max_element().clamp(0.0, 1.0)
                 } else {
                     0.0
                 };
-                out.transparency = transparency;
+                out.terms.transparency = transparency;
                 out.ior = ior;
                 out
             }

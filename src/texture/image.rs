@@ -169,6 +169,35 @@ impl ImageData {
         }
     }
 
+    /// The mean of its texels (linear), for what a texture gives on the whole: an emitting
+    /// texture's power. One pass over the image.
+    pub fn mean(&self) -> Color {
+        let n = (self.width as f64 * self.height as f64).max(1.0);
+        // In f64: a large image's sum in f32 would lose the last texels' share.
+        let mut sum = [0.0f64; 3];
+        match &self.texels {
+            Texels::Bytes { rgb, linear } => {
+                for t in rgb.chunks_exact(3) {
+                    for (s, &b) in sum.iter_mut().zip(t) {
+                        *s += linear[b as usize] as f64;
+                    }
+                }
+            }
+            Texels::Floats(texels) => {
+                for t in texels {
+                    for (s, &v) in sum.iter_mut().zip(t) {
+                        *s += v as f64;
+                    }
+                }
+            }
+        }
+        Color::new(
+            (sum[0] / n) as f32,
+            (sum[1] / n) as f32,
+            (sum[2] / n) as f32,
+        )
+    }
+
     /// Width in pixels.
     pub fn width(&self) -> u32 {
         self.width

@@ -65,6 +65,18 @@ impl Texture {
         }
     }
 
+    /// What the texture gives on average over its pattern (an image's mean texel, the mean
+    /// of a checker's or stripes' two colours, whose cells are equal), for an emitting
+    /// texture's power.
+    pub fn mean(&self) -> Color {
+        match &self.pattern {
+            Pattern::Solid(c) => *c,
+            Pattern::Image(img) => img.mean(),
+            Pattern::Checker { even, odd, .. } => (*even + *odd) * 0.5,
+            Pattern::Stripes { a, b, .. } => (*a + *b) * 0.5,
+        }
+    }
+
     /// The linear colour at a surface point.
     #[inline]
     pub fn eval(&self, p: &TexturePoint) -> Color {

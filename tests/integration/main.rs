@@ -14,6 +14,7 @@ mod renders;
 mod robustness;
 mod schema;
 mod shading;
+mod textured;
 
 use std::path::{Path, PathBuf};
 

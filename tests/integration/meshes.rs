@@ -253,7 +253,7 @@ fn mtl_materials_map_onto_the_physically_based_types() {
     }
     assert!(matches!(m("glass").surface, Surface::Dielectric(_)));
     assert_eq!(m("glass").ior, 1.33);
-    assert_eq!(m("glass").transparency, 1.0);
+    assert_eq!(m("glass").terms.transparency, 1.0);
     assert!(matches!(m("pane").surface, Surface::Thin(_)));
     assert!(matches!(m("coat").surface, Surface::Plastic(_)));
     assert!(matches!(m("rough").surface, Surface::Plastic(_)));
@@ -261,7 +261,10 @@ fn mtl_materials_map_onto_the_physically_based_types() {
     assert_eq!(lamp.surface, Surface::Phong);
     assert_eq!(
         lamp.emission.map(|e| (e.radiance, e.two_sided)),
-        Some((Color::new(4.0, 4.0, 2.0), false))
+        Some((
+            snell::material::ColorParam::Value(Color::new(4.0, 4.0, 2.0)),
+            false
+        ))
     );
     // The lamp's triangle is a light the path tracer samples.
     assert_eq!(scene.area_lights.len(), 1);

@@ -6,7 +6,7 @@
 
 use crate::geometry::{Disk, Mesh, Rect, Shape, Sphere, Triangle};
 use crate::light::{AreaLight, Emitter, ObjectLights};
-use crate::material::{Emission, Material};
+use crate::material::{ColorParam, Material};
 use crate::math::{Transform, Vec3A};
 use crate::scene::Object;
 
@@ -14,14 +14,25 @@ use crate::scene::Object;
 pub(super) fn area_lights(
     objects: &[Object],
     materials: &[Material],
+    textures: &[crate::texture::Texture],
     warnings: &mut Vec<String>,
 ) -> (Vec<AreaLight>, Vec<ObjectLights>) {
     let mut lights = vec![];
     let mut of_object = vec![ObjectLights::None; objects.len()];
+    // Each emitting material's mean radiance (a texture's over its pattern), which a light's
+    // power is taken from, and its texture.
     let emitting = |m: usize| {
-        materials[m]
-            .emission
-            .filter(|e| e.radiance.max_element() > 0.0)
+        let e = materials[m].emission?;
+        let texture = match e.radiance {
+            ColorParam::Texture(t) => Some(t),
+            ColorParam::Value(_) => None,
+        };
+        let mean = e.radiance.mean(textures);
+        (mean.max_element() > 0.0).then_some(Emitting {
+            mean,
+            texture,
+            two_sided: e.two_sided,
+        })
     };
     for (i, o) in objects.iter().enumerate() {
         if let Shape::Mesh(mesh) = &o.shape {
@@ -36,7 +47,8 @@ pub(super) fn area_lights(
                 of_object[i] = ObjectLights::Whole(lights.len() as u32);
                 lights.push(AreaLight {
                     emitter,
-                    radiance: e.radiance,
+                    radiance: e.mean,
+                    texture: e.texture,
                     two_sided: e.two_sided,
                     object: i,
                 });
@@ -50,13 +62,21 @@ pub(super) fn area_lights(
     (lights, of_object)
 }
 
+/// What a light takes from an emitting material.
+#[derive(Clone, Copy)]
+struct Emitting {
+    mean: crate::math::Color,
+    texture: Option<usize>,
+    two_sided: bool,
+}
+
 /// The emitting triangles of mesh object `index` as lights, in world space, each facing
 /// the side a hit on it calls its front.
 fn mesh_lights(
     index: usize,
     o: &Object,
     mesh: &Mesh,
-    emitting: &impl Fn(usize) -> Option<Emission>,
+    emitting: &impl Fn(usize) -> Option<Emitting>,
     lights: &mut Vec<AreaLight>,
 ) -> ObjectLights {
     let material_of = |prim: u32| {
@@ -102,7 +122,8 @@ fn mesh_lights(
         of_lane[prim as usize] = lights.len() as u32;
         lights.push(AreaLight {
             emitter: Emitter::Triangle(triangle),
-            radiance: e.radiance,
+            radiance: e.mean,
+            texture: e.texture,
             two_sided: e.two_sided,
             object: index,
         });

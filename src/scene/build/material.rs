@@ -3,10 +3,10 @@
 
 use super::Builder;
 use crate::bsdf::{ConductorFresnel, metals};
-use crate::material::{self, Emission, Material, Scalar};
+use crate::material::{self, ColorParam, Emission, Material, Scalar, TexturedTerms};
 use crate::math::Color;
 use crate::scene::diag::{DocPath, did_you_mean};
-use crate::scene::format::{ColorDef, MaterialDef, MaterialKind, RoughnessDef};
+use crate::scene::format::{ColorParamDef, MaterialDef, MaterialKind, ScalarDef};
 use crate::texture::Texture;
 use std::collections::BTreeMap;
 
@@ -28,8 +28,6 @@ impl MaterialTextures<'_> {
     }
 }
 
-const PHONG_DIFFUSE: f32 = 0.8;
-const PHONG_SHININESS: f32 = 50.0;
 const DEFAULT_IOR: f32 = 1.5;
 
 impl Builder<'_> {
@@ -59,8 +57,8 @@ impl Builder<'_> {
             }
         }
         let (texture, color) = self.material_color(m, path, tex);
-        let emission = m.emission.map(|e| Emission {
-            radiance: self.color(e, &path.key("emission")),
+        let emission = m.emission.as_ref().map(|e| Emission {
+            radiance: self.color_param(e, &path.key("emission"), tex),
             two_sided: m.two_sided.unwrap_or(false),
         });
         if m.two_sided.is_some() && m.emission.is_none() {
@@ -80,33 +78,68 @@ impl Builder<'_> {
         match m.kind {
             MaterialKind::Phong => {
                 let mut out = Material::base(texture, material::Surface::Phong, emission);
-                out.ambient = m
-                    .ambient
-                    .map_or(1.0, |x| self.non_negative(x, &path.key("ambient")));
-                out.diffuse = m.diffuse.map_or(PHONG_DIFFUSE, |x| {
-                    self.non_negative(x, &path.key("diffuse"))
-                });
-                out.specular = m
+                let mut textured = TexturedTerms::default();
+                let key = |k: &str| path.key(k);
+                let any = |b: &mut Self, x: f32, p: &DocPath| b.non_negative(x, p);
+                let unit = |b: &mut Self, x: f32, p: &DocPath| b.in_range(x, 0.0, 1.0, p);
+                let mut term =
+                    |b: &mut Self, d: &Option<ScalarDef>, name, slot: &mut f32, check| {
+                        if let Some(d) = d {
+                            match b.scalar(d, &key(name), tex, check) {
+                                Scalar::Value(v) => *slot = v,
+                                Scalar::Texture(i) => return Some(i),
+                            }
+                        }
+                        None
+                    };
+                textured.ambient = term(self, &m.ambient, "ambient", &mut out.terms.ambient, &any);
+                textured.diffuse = term(self, &m.diffuse, "diffuse", &mut out.terms.diffuse, &any);
+                textured.shininess = term(
+                    self,
+                    &m.shininess,
+                    "shininess",
+                    &mut out.terms.shininess,
+                    &any,
+                );
+                textured.reflectivity = term(
+                    self,
+                    &m.reflectivity,
+                    "reflectivity",
+                    &mut out.terms.reflectivity,
+                    &unit,
+                );
+                textured.transparency = term(
+                    self,
+                    &m.transparency,
+                    "transparency",
+                    &mut out.terms.transparency,
+                    &unit,
+                );
+                match m
                     .specular
-                    .map_or(Color::ZERO, |c| self.color(c, &path.key("specular")));
-                out.shininess = m.shininess.map_or(PHONG_SHININESS, |x| {
-                    self.non_negative(x, &path.key("shininess"))
-                });
-                out.reflectivity = m.reflectivity.map_or(0.0, |x| {
-                    self.in_range(x, 0.0, 1.0, &path.key("reflectivity"))
-                });
-                out.transparency = m.transparency.map_or(0.0, |x| {
-                    self.in_range(x, 0.0, 1.0, &path.key("transparency"))
-                });
+                    .as_ref()
+                    .map(|c| self.color_param(c, &key("specular"), tex))
+                {
+                    Some(ColorParam::Value(c)) => out.terms.specular = c,
+                    Some(ColorParam::Texture(i)) => textured.specular = Some(i),
+                    None => {}
+                }
+                if textured != TexturedTerms::default() {
+                    out.textured = Some(Box::new(textured));
+                }
                 out.ior = ior;
                 out.absorption = absorption;
                 out
             }
             MaterialKind::Diffuse => material::diffuse::material(texture, emission),
             MaterialKind::Conductor => {
-                let fresnel = self.conductor_fresnel(m, path);
-                material::conductor::Conductor { fresnel, roughness }
-                    .material(texture, color, alpha, emission)
+                let (fresnel, index) = self.conductor_fresnel(m, path, tex);
+                material::conductor::Conductor {
+                    fresnel,
+                    index,
+                    roughness,
+                }
+                .material(texture, color, alpha, emission)
             }
             MaterialKind::Dielectric => material::dielectric::Dielectric { roughness }
                 .material(texture, ior, absorption, alpha, emission),
@@ -167,32 +200,80 @@ impl Builder<'_> {
         None
     }
 
-    /// The roughness and, for the Whitted integrator, its constant value (a texture's is
-    /// taken as 0.5 there, a middling highlight).
-    fn roughness(
+    /// A number or the named texture: a constant checked by `check`, or the texture's index
+    /// (marked used; a missing name is an error, and reads as 0).
+    fn scalar(
         &mut self,
-        r: &Option<RoughnessDef>,
+        d: &ScalarDef,
         path: &DocPath,
         tex: &mut MaterialTextures,
-    ) -> (Scalar, f32) {
-        match r {
-            None => (Scalar::Value(0.0), 0.0),
-            Some(RoughnessDef::Value(v)) => {
-                let v = self.in_range(*v, 0.0, 1.0, path);
-                (Scalar::Value(v), v)
-            }
-            Some(RoughnessDef::Texture(name)) => match self.texture_named(name, path, tex) {
-                Some(i) => (Scalar::Texture(i), 0.5),
-                None => (Scalar::Value(0.0), 0.0),
+        check: &dyn Fn(&mut Self, f32, &DocPath) -> f32,
+    ) -> Scalar {
+        match d {
+            ScalarDef::Value(v) => Scalar::Value(check(self, *v, path)),
+            ScalarDef::Texture(name) => match self.texture_named(name, path, tex) {
+                Some(i) => Scalar::Texture(i),
+                None => Scalar::Value(0.0),
             },
         }
     }
 
-    /// A conductor's reflectance: a named metal, `eta` and `k`, or a perfect mirror.
-    fn conductor_fresnel(&mut self, m: &MaterialDef, path: &DocPath) -> ConductorFresnel {
-        let index =
-            |b: &mut Self, c: Option<ColorDef>, key: &str| c.map(|c| b.color(c, &path.key(key)));
-        match (&m.metal, index(self, m.eta, "eta"), index(self, m.k, "k")) {
+    /// A colour or the named texture (a missing name is an error, and reads as black).
+    fn color_param(
+        &mut self,
+        d: &ColorParamDef,
+        path: &DocPath,
+        tex: &mut MaterialTextures,
+    ) -> ColorParam {
+        match d {
+            ColorParamDef::Value(c) => ColorParam::Value(self.color(*c, path)),
+            ColorParamDef::Texture(name) => match self.texture_named(name, path, tex) {
+                Some(i) => ColorParam::Texture(i),
+                None => ColorParam::Value(Color::ZERO),
+            },
+        }
+    }
+
+    /// The roughness and, for the Whitted integrator, its constant value (a texture's is
+    /// taken as 0.5 there, a middling highlight).
+    fn roughness(
+        &mut self,
+        r: &Option<ScalarDef>,
+        path: &DocPath,
+        tex: &mut MaterialTextures,
+    ) -> (Scalar, f32) {
+        let unit = |b: &mut Self, x: f32, p: &DocPath| b.in_range(x, 0.0, 1.0, p);
+        match r.as_ref().map(|r| self.scalar(r, path, tex, &unit)) {
+            None => (Scalar::Value(0.0), 0.0),
+            Some(Scalar::Value(v)) => (Scalar::Value(v), v),
+            Some(t) => (t, 0.5),
+        }
+    }
+
+    /// A conductor's reflectance: a named metal, `eta` and `k`, or a perfect mirror; and
+    /// where `eta` or `k` is a texture, both as read point by point (the reflectance then
+    /// holds their means, which Whitted reads).
+    fn conductor_fresnel(
+        &mut self,
+        m: &MaterialDef,
+        path: &DocPath,
+        tex: &mut MaterialTextures,
+    ) -> (ConductorFresnel, Option<[ColorParam; 2]>) {
+        let mut index = |b: &mut Self, c: &Option<ColorParamDef>, key: &str| {
+            c.as_ref().map(|c| b.color_param(c, &path.key(key), tex))
+        };
+        let (eta, k) = (index(self, &m.eta, "eta"), index(self, &m.k, "k"));
+        if let (None, Some(eta), Some(k)) = (&m.metal, eta, k)
+            && (matches!(eta, ColorParam::Texture(_)) || matches!(k, ColorParam::Texture(_)))
+        {
+            let fresnel = ConductorFresnel::Complex {
+                eta: eta.mean(tex.textures),
+                k: k.mean(tex.textures),
+            };
+            return (fresnel, Some([eta, k]));
+        }
+        let constant = |c: Option<ColorParam>| c.map(|c| c.mean(&[]));
+        let fresnel = match (&m.metal, constant(eta), constant(k)) {
             (Some(name), None, None) => match metals::named(name) {
                 Some((eta, k)) => ConductorFresnel::Complex { eta, k },
                 None => {
@@ -224,6 +305,7 @@ impl Builder<'_> {
                 );
                 ConductorFresnel::One
             }
-        }
+        };
+        (fresnel, None)
     }
 }

@@ -584,7 +584,7 @@ impl Builder<'_> {
         }
 
         let (area_lights, area_light_of) =
-            emitters::area_lights(&objects, &materials, &mut self.warnings);
+            emitters::area_lights(&objects, &materials, &textures, &mut self.warnings);
         // The radius of the bounded objects' box, for a directional light's power.
         let radius = objects
             .iter()
@@ -608,7 +608,7 @@ impl Builder<'_> {
         self.stats = stats;
         self.stats.bvh_bytes += accel.bytes();
         // An object with several materials (a mesh with an MTL file) counts as transparent,
-        // or as reading uv, when any of them does.
+        // or as reading uv (through any texture of any of them), when any of them does.
         let materials_of = |o: &Object| -> Vec<usize> {
             if o.slot_materials.is_empty() {
                 vec![o.material]
@@ -629,8 +629,10 @@ impl Builder<'_> {
             .iter()
             .map(|o| {
                 materials_of(o).iter().any(|&m| {
-                    let t = &textures[materials[m].texture];
-                    !matches!(t.pattern, Pattern::Solid(_)) && matches!(t.mapping, Mapping::Uv)
+                    materials[m].textures().iter().any(|&t| {
+                        let t = &textures[t];
+                        !matches!(t.pattern, Pattern::Solid(_)) && matches!(t.mapping, Mapping::Uv)
+                    })
                 })
             })
             .collect();

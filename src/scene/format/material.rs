@@ -3,7 +3,7 @@
 //! another type reads is an error at its line), so the file stays one plain table that
 //! TOML, JSON and the schema all read alike.
 
-use super::{ColorDef, RoughnessDef};
+use super::{ColorDef, ColorParamDef, ScalarDef};
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};
 
@@ -65,38 +65,42 @@ pub struct MaterialDef {
     pub color: Option<ColorDef>,
     /// Name of a texture giving `color`.
     pub texture: Option<String>,
-    /// Phong: ambient coefficient (default 1).
-    pub ambient: Option<f32>,
-    /// Phong: diffuse coefficient (default 0.8).
-    pub diffuse: Option<f32>,
-    /// Phong: highlight colour (default 0, none).
-    pub specular: Option<ColorDef>,
-    /// Phong: highlight exponent, larger is sharper (default 50).
-    pub shininess: Option<f32>,
-    /// Phong: mirror weight in [0, 1] (default 0).
-    pub reflectivity: Option<f32>,
-    /// Phong: transmitted fraction in [0, 1] (default 0).
-    pub transparency: Option<f32>,
+    /// Phong: ambient coefficient (default 1), a number or a texture's name.
+    pub ambient: Option<ScalarDef>,
+    /// Phong: diffuse coefficient (default 0.8), a number or a texture's name.
+    pub diffuse: Option<ScalarDef>,
+    /// Phong: highlight colour (default 0, none), a colour or a texture's name.
+    pub specular: Option<ColorParamDef>,
+    /// Phong: highlight exponent, larger is sharper (default 50), a number or a texture's
+    /// name.
+    pub shininess: Option<ScalarDef>,
+    /// Phong: mirror weight in [0, 1] (default 0), a number or a texture's name.
+    pub reflectivity: Option<ScalarDef>,
+    /// Phong: transmitted fraction in [0, 1] (default 0), a number or a texture's name.
+    pub transparency: Option<ScalarDef>,
     /// Index of refraction of the inside (phong, dielectric, thin) or of the coat
-    /// (plastic); default 1.5.
+    /// (plastic); default 1.5. A number: it belongs to the solid, not to a point of its
+    /// surface.
     pub ior: Option<f32>,
     /// Beer-Lambert absorption per scene unit travelled inside, per channel (phong,
-    /// dielectric); default 0.
+    /// dielectric); default 0. A colour: it belongs to the solid's inside.
     pub absorption: Option<ColorDef>,
     /// GGX roughness alpha (Mitsuba's `alpha`; Blender's roughness r is alpha = r^2), a
     /// number or the name of a texture (its mean of r, g, b): 0 is smooth (conductor,
     /// dielectric, plastic; default 0).
-    pub roughness: Option<RoughnessDef>,
+    pub roughness: Option<ScalarDef>,
     /// Conductor: a named metal, `Au`, `Ag`, `Cu` or `Al` (or give `eta` and `k`; with
     /// neither the conductor is a perfect mirror).
     pub metal: Option<String>,
-    /// Conductor: real part of the complex index of refraction, per channel.
-    pub eta: Option<ColorDef>,
-    /// Conductor: imaginary part (extinction) of the index, per channel.
-    pub k: Option<ColorDef>,
-    /// Light the surface gives off, linear RGB radiance (any type; default none). An
-    /// emitting shape is an area light to the path tracer.
-    pub emission: Option<ColorDef>,
+    /// Conductor: real part of the complex index of refraction, per channel, a colour or
+    /// a texture's name.
+    pub eta: Option<ColorParamDef>,
+    /// Conductor: imaginary part (extinction) of the index, per channel, a colour or a
+    /// texture's name.
+    pub k: Option<ColorParamDef>,
+    /// Light the surface gives off, linear RGB radiance (any type; default none), a colour
+    /// or a texture's name. An emitting shape is an area light to the path tracer.
+    pub emission: Option<ColorParamDef>,
     /// Whether `emission` leaves both sides (default: the front side only).
     pub two_sided: Option<bool>,
 }

@@ -10,7 +10,7 @@ mod values;
 
 pub use integrator::{IntegratorDef, IntegratorKind, SamplerDef};
 pub use material::{MaterialDef, MaterialKind};
-pub use values::{ColorDef, RoughnessDef, ScaleDef, UvScaleDef};
+pub use values::{ColorDef, ColorParamDef, ScalarDef, ScaleDef, UvScaleDef};
 
 use schemars::JsonSchema;
 use serde::{Deserialize, Serialize};

@@ -148,49 +148,104 @@ fn three<'de, A: SeqAccess<'de>>(mut seq: A, exp: &dyn de::Expected) -> Result<[
     Ok(out)
 }
 
-/// A roughness: a number, or the name of a texture whose mean of r, g and b gives it.
+/// A material's number: a constant, or the name of a texture whose mean of r, g and b gives
+/// it at each point.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 #[serde(untagged)]
-pub enum RoughnessDef {
+pub enum ScalarDef {
     /// The same everywhere.
     Value(f32),
     /// Read from the named texture.
     Texture(String),
 }
 
-impl<'de> Deserialize<'de> for RoughnessDef {
+impl<'de> Deserialize<'de> for ScalarDef {
     fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
         struct V;
         impl<'de> Visitor<'de> for V {
-            type Value = RoughnessDef;
+            type Value = ScalarDef;
             fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
-                f.write_str("a roughness: a number, or the name of a texture")
+                f.write_str("a number, or the name of a texture")
             }
-            fn visit_f64<E: de::Error>(self, v: f64) -> Result<RoughnessDef, E> {
-                Ok(RoughnessDef::Value(v as f32))
+            fn visit_f64<E: de::Error>(self, v: f64) -> Result<ScalarDef, E> {
+                Ok(ScalarDef::Value(v as f32))
             }
-            fn visit_i64<E: de::Error>(self, v: i64) -> Result<RoughnessDef, E> {
-                Ok(RoughnessDef::Value(v as f32))
+            fn visit_i64<E: de::Error>(self, v: i64) -> Result<ScalarDef, E> {
+                Ok(ScalarDef::Value(v as f32))
             }
-            fn visit_u64<E: de::Error>(self, v: u64) -> Result<RoughnessDef, E> {
-                Ok(RoughnessDef::Value(v as f32))
+            fn visit_u64<E: de::Error>(self, v: u64) -> Result<ScalarDef, E> {
+                Ok(ScalarDef::Value(v as f32))
             }
-            fn visit_str<E: de::Error>(self, v: &str) -> Result<RoughnessDef, E> {
-                Ok(RoughnessDef::Texture(v.to_string()))
+            fn visit_str<E: de::Error>(self, v: &str) -> Result<ScalarDef, E> {
+                Ok(ScalarDef::Texture(v.to_string()))
             }
         }
         d.deserialize_any(V)
     }
 }
 
-impl JsonSchema for RoughnessDef {
+impl JsonSchema for ScalarDef {
     fn schema_name() -> Cow<'static, str> {
-        "Roughness".into()
+        "Scalar".into()
     }
     fn json_schema(_: &mut SchemaGenerator) -> Schema {
         json_schema!({
-            "description": "A roughness: a number, or the name of a texture (its mean of r, g and b).",
+            "description": "A number, or the name of a texture (its mean of r, g and b at each point).",
             "type": ["number", "string"],
+        })
+    }
+}
+
+/// A material's colour: `[r, g, b]` or one number for grey, or the name of a texture that
+/// gives it at each point.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+#[serde(untagged)]
+pub enum ColorParamDef {
+    /// The same everywhere.
+    Value(ColorDef),
+    /// Read from the named texture.
+    Texture(String),
+}
+
+impl<'de> Deserialize<'de> for ColorParamDef {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        struct V;
+        impl<'de> Visitor<'de> for V {
+            type Value = ColorParamDef;
+            fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
+                f.write_str("a colour ([r, g, b] or one number for grey), or the name of a texture")
+            }
+            fn visit_f64<E: de::Error>(self, v: f64) -> Result<ColorParamDef, E> {
+                Ok(ColorParamDef::Value(ColorDef([v as f32; 3])))
+            }
+            fn visit_i64<E: de::Error>(self, v: i64) -> Result<ColorParamDef, E> {
+                Ok(ColorParamDef::Value(ColorDef([v as f32; 3])))
+            }
+            fn visit_u64<E: de::Error>(self, v: u64) -> Result<ColorParamDef, E> {
+                Ok(ColorParamDef::Value(ColorDef([v as f32; 3])))
+            }
+            fn visit_seq<A: SeqAccess<'de>>(self, seq: A) -> Result<ColorParamDef, A::Error> {
+                three(seq, &self).map(|c| ColorParamDef::Value(ColorDef(c)))
+            }
+            fn visit_str<E: de::Error>(self, v: &str) -> Result<ColorParamDef, E> {
+                Ok(ColorParamDef::Texture(v.to_string()))
+            }
+        }
+        d.deserialize_any(V)
+    }
+}
+
+impl JsonSchema for ColorParamDef {
+    fn schema_name() -> Cow<'static, str> {
+        "ColorOrTexture".into()
+    }
+    fn json_schema(_: &mut SchemaGenerator) -> Schema {
+        json_schema!({
+            "description": "A colour ([r, g, b] in linear RGB, or one number for grey), or the name of a texture that gives it.",
+            "type": ["number", "array", "string"],
+            "items": { "type": "number" },
+            "minItems": 3,
+            "maxItems": 3,
         })
     }
 }
