@@ -31,6 +31,9 @@ pub struct MeshData {
     /// MTL files that `mtllib` names but that could not be read, each with why (`x.mtl`
     /// not found), so a scene can say why the mesh has no materials.
     pub unread_mtl: Vec<String>,
+    /// Every MTL file `mtllib` names, read or not (what a watcher of the mesh's files
+    /// watches), sorted.
+    pub mtl_files: Vec<std::path::PathBuf>,
 }
 
 /// A material from an MTL file (only what was given is `Some`).
@@ -92,6 +95,7 @@ impl MeshData {
             materials,
             warnings: _,
             unread_mtl: _,
+            mtl_files: _,
         } = self;
         if materials.len() > u16::MAX as usize {
             return Err(MeshInputError::TooManyMaterials(materials.len()));

@@ -608,6 +608,8 @@ impl<'p> Parser<'p> {
         self.assign_materials(&mut mesh, &mut warnings);
         mesh.warnings = warnings;
         mesh.unread_mtl = std::mem::take(&mut self.unread_mtl);
+        mesh.mtl_files = self.loaded_mtl.iter().cloned().collect();
+        mesh.mtl_files.sort();
         super::drop_degenerate(&mut mesh);
         Ok(mesh)
     }

@@ -3,6 +3,7 @@
 //! so a failed render never leaves a broken image or destroys an old one.
 
 pub mod atomic;
+pub mod tone;
 
 use crate::film::Image;
 use atomic::PendingFile;
@@ -70,21 +71,45 @@ pub fn linear_to_srgb(x: f32) -> f32 {
 /// megapixel is three million `powf`, which on one core kept the other idle for ~15 ms at the
 /// end of every render.
 pub fn to_srgb8(img: &Image) -> Vec<u8> {
+    to_srgb8_toned(img, &tone::Tone::default())
+}
+
+/// [`to_srgb8`] after the exposure and curve of `tone`.
+pub fn to_srgb8_toned(img: &Image, tone: &tone::Tone) -> Vec<u8> {
     use rayon::prelude::*;
     let mut out = vec![0u8; img.pixels.len() * 3];
+    let scale = tone.scale();
     out.par_chunks_mut(3 * 4096)
         .zip(img.pixels.par_chunks(4096))
         .for_each(|(out, pixels)| {
             for (o, v) in out.iter_mut().zip(pixels.iter().flat_map(|c| c.to_array())) {
-                let v = if v.is_finite() {
-                    v.clamp(0.0, 1.0)
-                } else {
-                    0.0
-                };
-                *o = (linear_to_srgb(v) * 255.0 + 0.5) as u8;
+                *o = (linear_to_srgb(tone.apply(v, scale)) * 255.0 + 0.5) as u8;
             }
         });
     out
+}
+
+/// The image as an 8-bit picture for a screen, after `tone`: a JPEG of `quality` (1 to
+/// 100), or where `quality` is `None` a PNG.
+pub fn encode_display(
+    img: &Image,
+    tone: &tone::Tone,
+    quality: Option<u8>,
+) -> Result<Vec<u8>, image::ImageError> {
+    use image::ImageEncoder;
+    let rgb = to_srgb8_toned(img, tone);
+    let mut bytes = vec![];
+    match quality {
+        Some(q) => image::codecs::jpeg::JpegEncoder::new_with_quality(&mut bytes, q.clamp(1, 100))
+            .write_image(&rgb, img.width, img.height, image::ExtendedColorType::Rgb8)?,
+        None => image::codecs::png::PngEncoder::new(&mut bytes).write_image(
+            &rgb,
+            img.width,
+            img.height,
+            image::ExtendedColorType::Rgb8,
+        )?,
+    }
+    Ok(bytes)
 }
 
 /// Encodes the image in `format`.

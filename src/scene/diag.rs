@@ -120,6 +120,9 @@ pub struct SceneError {
     pub file: PathBuf,
     /// The problems, in document order where known.
     pub diagnostics: Vec<SceneDiagnostic>,
+    /// The files the scene named and the build read or tried to read before it gave up
+    /// (textures, meshes, MTL files), for a watcher: creating a missing one may mend it.
+    pub files: Vec<PathBuf>,
 }
 
 impl fmt::Display for SceneError {
@@ -155,6 +158,7 @@ impl SceneError {
                 help: None,
                 line_col: None,
             }],
+            files: vec![],
         }
     }
 
@@ -198,6 +202,7 @@ impl SceneError {
         SceneError {
             file: file.to_path_buf(),
             diagnostics: located.into_iter().map(|(_, d)| d).collect(),
+            files: vec![],
         }
     }
 }

@@ -125,6 +125,7 @@ impl Builder<'_> {
         palette: &mut Palette,
     ) -> Option<LoadedMesh> {
         let full = self.base_dir.join(file);
+        self.files.push(full.clone());
         let key = (
             std::fs::canonicalize(&full).unwrap_or_else(|_| full.clone()),
             smooth,
@@ -163,6 +164,7 @@ impl Builder<'_> {
         }
         let loader_notes = data.warnings.join("; ");
         let unread_mtl = std::mem::take(&mut data.unread_mtl);
+        self.files.append(&mut data.mtl_files);
         let (input, materials) = match data.into_mesh_input(smooth) {
             Ok(converted) => converted,
             Err(MeshInputError::TooManyMaterials(n)) => {

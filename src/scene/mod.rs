@@ -23,6 +23,7 @@ use crate::material::Material;
 use crate::math::{Aabb, Color, LANES, Ray, Transform, Vec3A};
 use crate::texture::{Texture, TexturePoint};
 use std::collections::BTreeMap;
+use std::path::PathBuf;
 
 /// Render settings from the scene's `[image]` table (the command line may override them).
 #[derive(Clone, Debug, PartialEq)]
@@ -276,7 +277,7 @@ pub struct Hit {
 }
 
 /// A scene ready to render: immutable, shared by all threads.
-#[derive(Debug)]
+#[derive(Clone, Debug)]
 pub struct Scene {
     /// The camera.
     pub camera: Camera,
@@ -319,6 +320,9 @@ pub struct Scene {
     transparent_objects: Vec<usize>,
     /// Per object: whether its texture reads the shape's own uv.
     needs_uv: Vec<bool>,
+    /// The files the scene read besides itself (textures, meshes, MTL files and their
+    /// maps), sorted: what a preview watches for changes.
+    pub files: Vec<PathBuf>,
 }
 
 impl Scene {

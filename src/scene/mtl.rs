@@ -79,9 +79,15 @@ impl Builder<'_> {
         let transparency = transparency(m);
         let kind = mtl_type(m);
         let kd = m.kd.map_or(Color::splat(0.8), rgb);
+        let clear = matches!(kind, MtlType::Glass(_) | MtlType::Pane);
+        if let Some(file) = &m.map_kd
+            && !clear
+        {
+            self.files.push(file.clone());
+        }
         let pattern = match &m.map_kd {
             // Clear glass: `Tf` colours only Phong's see-through materials.
-            _ if matches!(kind, MtlType::Glass(_) | MtlType::Pane) => Pattern::Solid(Color::ONE),
+            _ if clear => Pattern::Solid(Color::ONE),
             Some(file) => match ImageData::load_limited(
                 file,
                 ColorSpace::Srgb,

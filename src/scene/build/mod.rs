@@ -15,7 +15,7 @@ use crate::sampler::SamplerKind;
 use crate::texture::{ColorSpace, ImageData, Mapping, Pattern, Texture};
 use material::MaterialTextures;
 use std::collections::BTreeMap;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 mod emitters;
@@ -81,12 +81,18 @@ fn build(
         stats: Default::default(),
         limits: *limits,
         triangles_loaded: 0,
+        files: vec![],
     };
-    let scene = b.scene(def);
+    let mut scene = b.scene(def);
+    b.files.sort();
+    b.files.dedup();
     if b.problems.is_empty() {
+        scene.files = b.files;
         Ok(scene)
     } else {
-        Err(SceneError::located(file, text, format, b.problems))
+        let mut e = SceneError::located(file, text, format, b.problems);
+        e.files = b.files;
+        Err(e)
     }
 }
 
@@ -342,6 +348,8 @@ pub(super) struct Builder<'a> {
     pub(super) limits: Limits,
     /// Triangles in the meshes loaded so far (each file once).
     pub(super) triangles_loaded: u64,
+    /// The files read or tried so far (textures, meshes, MTL files and their maps).
+    pub(super) files: Vec<PathBuf>,
 }
 
 impl Builder<'_> {
@@ -658,6 +666,7 @@ impl Builder<'_> {
             needs_uv,
             stats: std::mem::take(&mut self.stats),
             limits: self.limits,
+            files: vec![],
         }
     }
 
@@ -875,6 +884,7 @@ impl Builder<'_> {
             } => {
                 let mapping = self.mapping(mapping, &path.key("mapping"));
                 let full = self.base_dir.join(file);
+                self.files.push(full.clone());
                 let space = match color_space {
                     ColorSpaceDef::Srgb => ColorSpace::Srgb,
                     ColorSpaceDef::Linear => ColorSpace::Linear,
