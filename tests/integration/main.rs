@@ -13,6 +13,7 @@ mod properties;
 mod renders;
 mod robustness;
 mod schema;
+mod serve;
 mod shading;
 mod textured;
 

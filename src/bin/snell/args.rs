@@ -17,6 +17,13 @@ pub(crate) struct ImageArgs {
     /// Image height in pixels (overrides the scene).
     #[arg(long, allow_negative_numbers = true, value_parser = size, value_name = "H")]
     pub(crate) height: Option<u32>,
+    #[command(flatten)]
+    pub(crate) sampling: SamplingArgs,
+}
+
+/// The sampling flags `render`, `explain` and `serve` share.
+#[derive(Args, Debug)]
+pub(crate) struct SamplingArgs {
     /// Samples per pixel: for the Whitted integrator a square number, 1, 4, 9, 16 ... (n x n
     /// stratified, jittered), for the path tracer any number; `explain --sample` counts up
     /// to it.
@@ -40,13 +47,48 @@ impl ImageArgs {
         snell::job::Overrides {
             width: self.width,
             height: self.height,
-            spp: self.spp,
             seed,
+            ..self.sampling.overrides()
+        }
+    }
+}
+
+impl SamplingArgs {
+    /// The overrides these flags give.
+    pub(crate) fn overrides(&self) -> snell::job::Overrides {
+        snell::job::Overrides {
+            spp: self.spp,
             integrator: self.integrator,
             sampler: self.sampler,
             clamp: self.clamp,
+            ..snell::job::Overrides::default()
         }
     }
+}
+
+/// `snell serve`'s arguments.
+#[derive(Args, Debug)]
+pub(crate) struct ServeArgs {
+    /// The scene file (.toml or .json).
+    pub(crate) scene: PathBuf,
+    /// The port to listen on; 0 takes a free one (the address is printed).
+    #[arg(long, allow_negative_numbers = true, value_parser = whole::<u16>, default_value_t = 8570)]
+    pub(crate) port: u16,
+    /// The address to listen on. The default answers this machine only; another (0.0.0.0
+    /// for every interface) lets the network read the picture and the scene's file names.
+    #[arg(long, value_name = "ADDRESS", default_value = "127.0.0.1")]
+    pub(crate) host: String,
+    /// Open the page in the default browser.
+    #[arg(long)]
+    pub(crate) open: bool,
+    /// The preview's longest side in pixels (the scene's shape kept, never enlarged); 0
+    /// renders at the scene's own size.
+    #[arg(long, allow_negative_numbers = true, value_parser = whole::<u32>, value_name = "PIXELS", default_value_t = 512)]
+    pub(crate) size: u32,
+    #[command(flatten)]
+    pub(crate) sampling: SamplingArgs,
+    #[command(flatten)]
+    pub(crate) limits: LimitArgs,
 }
 
 fn parse_integrator(s: &str) -> Result<IntegratorKind, String> {

@@ -27,8 +27,9 @@ macro_rules! outln {
 mod args;
 mod explain;
 mod render;
+mod serve;
 
-use args::{ExplainArgs, LimitArgs, RenderArgs};
+use args::{ExplainArgs, LimitArgs, RenderArgs, ServeArgs};
 
 const EXAMPLES: &str = "\
 Examples:
@@ -41,6 +42,8 @@ Examples:
   snell check scenes/seed.toml                  validate a scene and print a summary
   snell explain scenes/seed.toml --pixel 512,760
                                                 the tree of rays behind one pixel
+  snell serve scenes/seed.toml --open           a live preview in the browser, redrawn at
+                                                every save; click a pixel to explain it
 
 Exit codes: 0 done, 1 rendering or writing failed, 2 bad command line or scene,
 130 interrupted (Ctrl-C or SIGTERM; the tiles finished were written to NAME.partial.png
@@ -76,6 +79,14 @@ enum Command {
     /// ray hit, the material's terms, every light and its shadow ray, the Fresnel split and
     /// the colour each ray returns.
     Explain(ExplainArgs),
+    /// A live preview in the browser: the picture refines pass after pass and is drawn
+    /// again whenever the scene file, or a texture or mesh it reads, is saved; a click on a
+    /// pixel shows the rays behind it.
+    ///
+    /// Listens on 127.0.0.1 (this machine only) unless --host says otherwise, and never
+    /// writes the scene file: a camera moved on the page is copied from it as a [camera]
+    /// table to paste.
+    Serve(ServeArgs),
     /// Print the scene format's JSON Schema, for editors: `snell schema > snell.schema.json`.
     ///
     /// With it, editors complete keys and flag mistakes in scene files as one types;
@@ -100,6 +111,7 @@ fn main() -> ExitCode {
             Err(code) => code,
         },
         Command::Explain(args) => explain::explain(args),
+        Command::Serve(args) => serve::serve(args),
         Command::Schema => schema(),
     }
 }
@@ -116,7 +128,13 @@ fn schema() -> ExitCode {
 }
 
 fn print_scene_error(e: &SceneError) {
-    let terminal = std::io::stderr().is_terminal();
+    eprint!("{}", scene_error_text(e, std::io::stderr().is_terminal()));
+}
+
+/// A scene's problems as `snell check` prints them: each with its file, line and column, the
+/// line itself and the hint; in colour and wrapped for a terminal, plain otherwise (a log,
+/// a tool, the preview's page).
+pub(crate) fn scene_error_text(e: &SceneError, terminal: bool) -> String {
     let theme = if terminal {
         miette::GraphicalTheme::unicode()
     } else {
@@ -125,19 +143,21 @@ fn print_scene_error(e: &SceneError) {
     // Lines are wrapped for a person at a terminal only: piped into a log or a tool, a message
     // stays on one line however long its paths are, so that grep finds it whole.
     let handler = miette::GraphicalReportHandler::new_themed(theme).with_wrap_lines(terminal);
+    let mut text = String::new();
     for d in &e.diagnostics {
         let mut out = String::new();
         if handler.render_report(&mut out, d).is_err() {
             out = d.message().to_string();
         }
-        eprint!("{out}");
+        text.push_str(&out);
     }
     let n = e.diagnostics.len();
-    eprintln!(
-        "error: {} has {n} problem{}",
+    text.push_str(&format!(
+        "error: {} has {n} problem{}\n",
         e.file.display(),
         if n == 1 { "" } else { "s" }
-    );
+    ));
+    text
 }
 
 pub(crate) fn load(path: &Path, limits: &Limits) -> Result<snell::Scene, ExitCode> {

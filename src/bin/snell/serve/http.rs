@@ -1,0 +1,509 @@
+//! The preview's HTTP routes (axum), and the rules every request passes first: a Host
+//! header that names this server (so that a page elsewhere cannot reach it through DNS
+//! rebinding), no Origin but this server's own (no cross-origin reads, event streams or
+//! camera changes), and only the routes below. No part of a URL is ever used as a path on
+//! disk. Work that takes time (encoding, debug views, explaining) runs off the async
+//! threads.
+
+use super::preview::{Frame, Shared};
+use axum::Router;
+use axum::body::Body;
+use axum::extract::{DefaultBodyLimit, Path, RawQuery, Request, State};
+use axum::http::{HeaderValue, StatusCode, header};
+use axum::middleware::{self, Next};
+use axum::response::sse::{Event, KeepAlive, Sse};
+use axum::response::{IntoResponse, Response};
+use axum::routing::{get, post};
+use snell::camera::CameraView;
+use snell::integrator::aov::{Aov, render_aovs};
+use snell::math::Vec3A;
+use snell::output::tone::{Tone, ToneCurve};
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::{Arc, Mutex};
+use std::time::Duration;
+
+const PAGE: &str = include_str!("page/index.html");
+const SCRIPT: &str = include_str!("page/app.js");
+const STYLE: &str = include_str!("page/style.css");
+
+/// Event streams open at once; more are refused, so that tabs left open cannot use up the
+/// server.
+const MAX_STREAMS: usize = 64;
+/// A stream says something this often, so that a closed tab is noticed.
+const HEARTBEAT: Duration = Duration::from_secs(15);
+/// The largest request body read (a camera is a few hundred bytes).
+const MAX_BODY: usize = 4096;
+/// JPEG quality of the frames.
+const QUALITY: u8 = 90;
+
+/// An encoded picture, shared by the answers that send it.
+type Encoded = Arc<Vec<u8>>;
+
+/// What a frame was encoded from: the frame, the exposure's bits and the curve.
+type FrameKey = (u64, u32, ToneCurve);
+
+/// What the handlers share.
+pub(crate) struct Context {
+    pub shared: Arc<Shared>,
+    /// Host header values this server answers to (`127.0.0.1:PORT`, `localhost:PORT` ...);
+    /// empty: any (the server was told to listen on every interface).
+    pub hosts: Vec<String>,
+    /// Event streams open now.
+    streams: AtomicUsize,
+    /// The last frame encoded, by frame and tone.
+    frame_cache: Mutex<Option<(FrameKey, Encoded)>>,
+    /// The debug views of the render shown, by generation and view.
+    view_cache: Mutex<Vec<((u64, Aov), Encoded)>>,
+}
+
+impl Context {
+    pub(crate) fn new(shared: Arc<Shared>, hosts: Vec<String>) -> Self {
+        Context {
+            shared,
+            hosts,
+            streams: AtomicUsize::new(0),
+            frame_cache: Mutex::new(None),
+            view_cache: Mutex::new(vec![]),
+        }
+    }
+}
+
+type Ctx = State<Arc<Context>>;
+
+/// The routes, behind the Host and Origin rules.
+pub(crate) fn router(ctx: Arc<Context>) -> Router {
+    Router::new()
+        .route("/", get(|| async { page("text/html; charset=utf-8", PAGE) }))
+        .route("/app.js", get(|| async { page("text/javascript; charset=utf-8", SCRIPT) }))
+        .route("/style.css", get(|| async { page("text/css; charset=utf-8", STYLE) }))
+        .route("/events", get(events))
+        .route("/status", get(|State(ctx): Ctx| async move { json(&status(&ctx)) }))
+        .route("/frame.jpg", get(frame))
+        .route("/view/{file}", get(view))
+        .route("/explain", get(explain))
+        .route("/pick", get(pick))
+        .route("/camera", post(camera))
+        .route(
+            "/camera/reset",
+            post(|State(ctx): Ctx| async move {
+                ctx.shared.set_camera(None);
+                json(&serde_json::json!({ "ok": true }))
+            }),
+        )
+        .fallback(|| async {
+            error(
+                StatusCode::NOT_FOUND,
+                "not found: the preview serves its page, its pictures and the explain data, nothing else",
+            )
+        })
+        .layer(DefaultBodyLimit::max(MAX_BODY))
+        .layer(middleware::from_fn_with_state(ctx.clone(), guard))
+        .with_state(ctx)
+}
+
+/// The Host rule, the Origin rule where a browser sends one, and the headers every answer
+/// carries.
+async fn guard(State(ctx): Ctx, req: Request, next: Next) -> Response {
+    let why = {
+        let header = |name: header::HeaderName| {
+            req.headers()
+                .get(name)
+                .and_then(|v| v.to_str().ok())
+                .map(str::to_string)
+        };
+        let (host, origin) = (header(header::HOST), header(header::ORIGIN));
+        refusal(&ctx.hosts, host.as_deref(), origin.as_deref())
+    };
+    let mut response = match why {
+        Some(why) => error(StatusCode::FORBIDDEN, why),
+        None => next.run(req).await,
+    };
+    let h = response.headers_mut();
+    for (name, value) in [
+        (header::CACHE_CONTROL, "no-store"),
+        (header::X_CONTENT_TYPE_OPTIONS, "nosniff"),
+        (header::X_FRAME_OPTIONS, "DENY"),
+        (header::REFERRER_POLICY, "no-referrer"),
+        (
+            header::CONTENT_SECURITY_POLICY,
+            "default-src 'self'; img-src 'self' blob: data:; connect-src 'self'; frame-ancestors 'none'",
+        ),
+    ] {
+        h.insert(name, HeaderValue::from_static(value));
+    }
+    response
+}
+
+/// Why a request with these Host and Origin headers is refused, if it is: `hosts` are the
+/// Host values this server answers to (empty: any).
+fn refusal(hosts: &[String], host: Option<&str>, origin: Option<&str>) -> Option<&'static str> {
+    let ours = |h: &str| hosts.iter().any(|a| a.eq_ignore_ascii_case(h));
+    if !hosts.is_empty() && !host.is_some_and(ours) {
+        return Some("this server answers only to its own address (the Host header names another)");
+    }
+    let origin = origin?;
+    let same = match origin.strip_prefix("http://") {
+        Some(o) if hosts.is_empty() => host == Some(o),
+        Some(o) => ours(o),
+        None => false,
+    };
+    (!same).then_some("cross-origin requests are refused")
+}
+
+fn page(kind: &'static str, text: &'static str) -> Response {
+    ([(header::CONTENT_TYPE, kind)], text).into_response()
+}
+
+fn bytes(kind: &'static str, body: Arc<Vec<u8>>) -> Response {
+    (
+        [(header::CONTENT_TYPE, kind)],
+        Body::from(body.as_ref().clone()),
+    )
+        .into_response()
+}
+
+fn json(value: &serde_json::Value) -> Response {
+    (
+        [(header::CONTENT_TYPE, "application/json")],
+        value.to_string(),
+    )
+        .into_response()
+}
+
+fn error(status: StatusCode, message: &str) -> Response {
+    (
+        status,
+        [(header::CONTENT_TYPE, "text/plain; charset=utf-8")],
+        format!("{message}\n"),
+    )
+        .into_response()
+}
+
+/// Runs `f` off the async threads.
+async fn blocking(f: impl FnOnce() -> Response + Send + 'static) -> Response {
+    tokio::task::spawn_blocking(f).await.unwrap_or_else(|e| {
+        error(
+            StatusCode::INTERNAL_SERVER_ERROR,
+            &format!("the request failed: {e}"),
+        )
+    })
+}
+
+/// A query string's values.
+struct Query(String);
+
+impl Query {
+    fn get(&self, key: &str) -> Option<&str> {
+        self.0
+            .split('&')
+            .filter_map(|kv| kv.split_once('='))
+            .find(|(k, _)| *k == key)
+            .map(|(_, v)| v)
+    }
+
+    /// The value of `key` as a `T`: `Ok(None)` when absent, `Err` when it is not one.
+    fn number<T: std::str::FromStr>(&self, key: &str) -> Result<Option<T>, ()> {
+        self.get(key).map(|v| v.parse().map_err(|_| ())).transpose()
+    }
+}
+
+/// What a page shows besides the picture: the render's progress, the error, the camera.
+pub(crate) fn status(ctx: &Context) -> serde_json::Value {
+    let s = ctx.shared.lock();
+    let frame = s.frame.as_ref().map(|f: &Arc<Frame>| {
+        serde_json::json!({
+            "id": f.id,
+            "generation": f.generation,
+            "width": f.image.width,
+            "height": f.image.height,
+            "spp": f.spp,
+            "passes": f.passes,
+            "elapsed": f.elapsed,
+            "rays_per_second": f.rays_per_second,
+            "done": f.done,
+        })
+    });
+    let camera = s.scene.as_ref().map(|sc| {
+        let v = sc.camera.view();
+        serde_json::json!({
+            "position": v.position.to_array(),
+            "look_at": v.look_at.to_array(),
+            "up": v.up.to_array(),
+            "fov": v.fov,
+        })
+    });
+    serde_json::json!({
+        "version": s.version,
+        "generation": s.generation,
+        "scene": ctx.shared.settings.scene.display().to_string(),
+        "integrator": s.integrator,
+        "target_spp": s.target_spp,
+        "size": s.scene.as_ref().map(|sc| [sc.settings.width, sc.settings.height]),
+        "frame": frame,
+        "error": s.error,
+        "camera": camera,
+        "camera_moved": s.camera_override.is_some(),
+        "files": s.files.iter().map(|f| f.display().to_string()).collect::<Vec<_>>(),
+    })
+}
+
+/// Counts an event stream while it is open.
+struct Open(Arc<Context>);
+
+impl Drop for Open {
+    fn drop(&mut self) {
+        self.0.streams.fetch_sub(1, Ordering::SeqCst);
+    }
+}
+
+/// Server-sent events: the status at once, then at every change. A page that cannot keep up
+/// gets the newest status when it next reads: nothing is queued for it.
+async fn events(State(ctx): Ctx) -> Response {
+    if ctx.streams.fetch_add(1, Ordering::SeqCst) >= MAX_STREAMS {
+        ctx.streams.fetch_sub(1, Ordering::SeqCst);
+        return error(StatusCode::SERVICE_UNAVAILABLE, "too many pages are open");
+    }
+    let open = Open(ctx.clone());
+    let changes = ctx.shared.versions.subscribe();
+    let stream = futures_util::stream::unfold(
+        (open, changes, true),
+        |(open, mut changes, first)| async move {
+            if !first && changes.changed().await.is_err() {
+                return None;
+            }
+            if open.0.shared.stop.load(Ordering::SeqCst) {
+                return None;
+            }
+            changes.mark_unchanged();
+            let event = Event::default()
+                .event("status")
+                .data(status(&open.0).to_string());
+            Some((
+                Ok::<_, std::convert::Infallible>(event),
+                (open, changes, false),
+            ))
+        },
+    );
+    Sse::new(stream)
+        .keep_alive(KeepAlive::new().interval(HEARTBEAT).text("still here"))
+        .into_response()
+}
+
+/// The newest frame as a JPEG, after `exposure` (stops) and `tone` (a curve's name).
+async fn frame(State(ctx): Ctx, RawQuery(q): RawQuery) -> Response {
+    let q = Query(q.unwrap_or_default());
+    let exposure = match q.number::<f32>("exposure") {
+        Ok(e) if e.is_none_or(|e| e.is_finite() && e.abs() <= 20.0) => e.unwrap_or(0.0),
+        _ => {
+            return error(
+                StatusCode::BAD_REQUEST,
+                "exposure is a number of stops from -20 to 20",
+            );
+        }
+    };
+    let curve = match q.get("tone").map(ToneCurve::from_name) {
+        None => ToneCurve::Clamp,
+        Some(Some(c)) => c,
+        Some(None) => return error(StatusCode::BAD_REQUEST, "tone is clamp, reinhard or aces"),
+    };
+    let Some(frame) = ctx.shared.lock().frame.clone() else {
+        return error(StatusCode::NOT_FOUND, "no picture yet");
+    };
+    blocking(move || {
+        let key = (frame.id, exposure.to_bits(), curve);
+        let mut cache = ctx.frame_cache.lock().unwrap_or_else(|e| e.into_inner());
+        if let Some((k, bytes)) = cache.as_ref()
+            && *k == key
+        {
+            return self::bytes("image/jpeg", bytes.clone());
+        }
+        let tone = Tone { exposure, curve };
+        match snell::output::encode_display(&frame.image, &tone, Some(QUALITY)) {
+            Ok(encoded) => {
+                let encoded = Arc::new(encoded);
+                *cache = Some((key, encoded.clone()));
+                self::bytes("image/jpeg", encoded)
+            }
+            Err(e) => error(
+                StatusCode::INTERNAL_SERVER_ERROR,
+                &format!("cannot encode the picture: {e}"),
+            ),
+        }
+    })
+    .await
+}
+
+/// A debug view of the scene shown, as a PNG (one ray through each pixel's centre):
+/// `/view/NAME.png`.
+async fn view(State(ctx): Ctx, Path(file): Path<String>) -> Response {
+    let Some(aov) = file.strip_suffix(".png").and_then(Aov::from_name) else {
+        return error(StatusCode::NOT_FOUND, "no such view");
+    };
+    let (scene, generation) = {
+        let s = ctx.shared.lock();
+        (s.scene.clone(), s.generation)
+    };
+    let Some(scene) = scene else {
+        return error(StatusCode::NOT_FOUND, "no scene yet");
+    };
+    blocking(move || {
+        let mut cache = ctx.view_cache.lock().unwrap_or_else(|e| e.into_inner());
+        cache.retain(|((g, _), _)| *g == generation);
+        if let Some((_, b)) = cache.iter().find(|(k, _)| *k == (generation, aov)) {
+            return bytes("image/png", b.clone());
+        }
+        let picture = render_aovs(&scene, None)
+            .map_err(|e| e.to_string())
+            .and_then(|b| {
+                let img = b.display(aov, scene.settings.max_depth);
+                snell::output::encode_display(&img, &Tone::default(), None)
+                    .map_err(|e| e.to_string())
+            });
+        match picture {
+            Ok(png) => {
+                let png = Arc::new(png);
+                cache.push(((generation, aov), png.clone()));
+                bytes("image/png", png)
+            }
+            Err(e) => error(
+                StatusCode::INTERNAL_SERVER_ERROR,
+                &format!("cannot render the view: {e}"),
+            ),
+        }
+    })
+    .await
+}
+
+/// The scene shown and the pixel a query names inside it (or the answer that says why
+/// not, boxed: a response is large).
+fn scene_and_pixel(
+    ctx: &Context,
+    q: Option<String>,
+) -> Result<(Arc<snell::Scene>, u32, u32), Box<Response>> {
+    let Some(scene) = ctx.shared.lock().scene.clone() else {
+        return Err(Box::new(error(StatusCode::NOT_FOUND, "no scene yet")));
+    };
+    let q = Query(q.unwrap_or_default());
+    let (w, h) = (scene.settings.width, scene.settings.height);
+    match (q.number::<u32>("x"), q.number::<u32>("y")) {
+        (Ok(Some(x)), Ok(Some(y))) if x < w && y < h => Ok((scene, x, y)),
+        _ => Err(Box::new(error(
+            StatusCode::BAD_REQUEST,
+            &format!("give the pixel as x=COLUMN&y=ROW inside the {w} x {h} picture"),
+        ))),
+    }
+}
+
+/// The explain data of a pixel: the Whitted tree of the ray through its centre, or the path
+/// of sample 0 under the path tracer, as `snell explain --json` gives them, with each hit
+/// point's place on the picture (`screen`) for drawing.
+async fn explain(State(ctx): Ctx, RawQuery(q): RawQuery) -> Response {
+    let (scene, x, y) = match scene_and_pixel(&ctx, q) {
+        Ok(v) => v,
+        Err(r) => return *r,
+    };
+    blocking(move || {
+        let path = &ctx.shared.settings.scene;
+        let mut doc = if scene.settings.integrator.kind == snell::scene::IntegratorKind::Path {
+            crate::explain::path_json(&scene, path, (x, y), 0).0
+        } else {
+            let film = (x as f32 + 0.5, y as f32 + 0.5);
+            match crate::explain::whitted_tree(&scene, film, 200) {
+                Some((color, rays, tree)) => crate::explain::whitted_json(
+                    &scene,
+                    path,
+                    (x, y),
+                    None,
+                    film,
+                    color,
+                    &rays,
+                    &tree,
+                ),
+                None => return error(StatusCode::INTERNAL_SERVER_ERROR, "no ray was recorded"),
+            }
+        };
+        let (w, h) = (scene.settings.width, scene.settings.height);
+        place_points(&mut doc, &|p| scene.camera.project(p, w, h));
+        json(&doc)
+    })
+    .await
+}
+
+/// Adds `screen: [x, y]` (or null) beside every `point: [x, y, z]` in `doc`.
+fn place_points(doc: &mut serde_json::Value, project: &dyn Fn(Vec3A) -> Option<(f32, f32)>) {
+    match doc {
+        serde_json::Value::Object(map) => {
+            let point = map.get("point").and_then(|p| {
+                let a = p.as_array()?;
+                let v: Vec<f32> = a
+                    .iter()
+                    .filter_map(|c| c.as_f64())
+                    .map(|c| c as f32)
+                    .collect();
+                (v.len() == 3).then(|| Vec3A::new(v[0], v[1], v[2]))
+            });
+            if let Some(p) = point {
+                let screen = project(p).map(|(x, y)| vec![x, y]);
+                map.insert("screen".into(), serde_json::json!(screen));
+            }
+            for v in map.values_mut() {
+                place_points(v, project);
+            }
+        }
+        serde_json::Value::Array(items) => {
+            for v in items {
+                place_points(v, project);
+            }
+        }
+        _ => {}
+    }
+}
+
+/// The object and material under a pixel's centre.
+async fn pick(State(ctx): Ctx, RawQuery(q): RawQuery) -> Response {
+    let (scene, x, y) = match scene_and_pixel(&ctx, q) {
+        Ok(v) => v,
+        Err(r) => return *r,
+    };
+    let s = &scene.settings;
+    let ray = scene
+        .camera
+        .ray(x as f32 + 0.5, y as f32 + 0.5, s.width, s.height);
+    let hit = scene.closest_hit(&ray, f32::INFINITY);
+    json(&serde_json::json!({
+        "pixel": [x, y],
+        "object": hit.as_ref().map(|h| scene.objects[h.object].name.clone()),
+        "material": hit.as_ref().and_then(|h| scene.material_names.get(h.material).cloned()),
+        "distance": hit.as_ref().map(|h| h.t),
+    }))
+}
+
+/// A camera the page moved to: `{"position": [x, y, z], "look_at": [...], "up": [...],
+/// "fov": degrees}`. The scene file is never written.
+async fn camera(State(ctx): Ctx, body: String) -> Response {
+    #[derive(serde::Deserialize)]
+    #[serde(deny_unknown_fields)]
+    struct Body {
+        position: [f32; 3],
+        look_at: [f32; 3],
+        up: [f32; 3],
+        fov: f32,
+    }
+    let view = match serde_json::from_str::<Body>(&body) {
+        Ok(b) => CameraView {
+            position: Vec3A::from(b.position),
+            look_at: Vec3A::from(b.look_at),
+            up: Vec3A::from(b.up),
+            fov: b.fov,
+        },
+        Err(e) => return error(StatusCode::BAD_REQUEST, &format!("not a camera: {e}")),
+    };
+    if !view.is_valid() {
+        return error(
+            StatusCode::BAD_REQUEST,
+            "not a camera: positions must be finite, look_at away from position, up not along the view, fov between 0 and 180",
+        );
+    }
+    ctx.shared.set_camera(Some(view));
+    json(&serde_json::json!({ "ok": true }))
+}

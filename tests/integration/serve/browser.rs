@@ -1,0 +1,315 @@
+//! The preview in a real browser: headless Chromium, driven by ChromeDriver over WebDriver,
+//! opens the page, waits for a picture, sees it change when the scene is saved, clicks the
+//! diamond sphere and finds the refraction in the explain tree.
+//!
+//! It needs Debian's `chromium` and `chromium-driver` (`apt-get install chromium
+//! chromium-driver`). Without them the test says so and passes, unless `SNELL_BROWSER_TEST`
+//! is `require` (CI sets it). `SNELL_SCREENSHOT=FILE` saves the page as it ends (the README's
+//! picture: `SNELL_SCREENSHOT=docs/images/serve.png cargo test browser`).
+
+use super::{seed_copy, start, wait_for};
+use serde_json::{Value, json};
+use std::io::{Read, Write};
+use std::net::TcpStream;
+use std::process::{Child, Command, Stdio};
+use std::time::{Duration, Instant};
+
+const CHROMIUM: &str = "/usr/bin/chromium";
+const DRIVER: &str = "/usr/bin/chromedriver";
+/// The W3C name of an element reference in WebDriver's JSON.
+const ELEMENT: &str = "element-6066-11e4-a52e-4f735466cecf";
+
+/// ChromeDriver, stopped when dropped.
+struct Driver {
+    child: Child,
+    port: u16,
+    session: String,
+}
+
+impl Drop for Driver {
+    fn drop(&mut self) {
+        if !self.session.is_empty() {
+            let _ = self.call("DELETE", &format!("/session/{}", self.session), None);
+        }
+        let _ = self.child.kill();
+        let _ = self.child.wait();
+    }
+}
+
+impl Driver {
+    /// A WebDriver command: `Value` of the answer, or the error it gave.
+    fn call(&self, method: &str, path: &str, body: Option<Value>) -> Result<Value, String> {
+        let body = body.map(|b| b.to_string()).unwrap_or_default();
+        let mut s = TcpStream::connect(("127.0.0.1", self.port)).map_err(|e| e.to_string())?;
+        s.set_read_timeout(Some(Duration::from_secs(60))).ok();
+        write!(
+            s,
+            "{method} {path} HTTP/1.1\r\nHost: 127.0.0.1:{}\r\nContent-Type: application/json\r\nContent-Length: {}\r\nConnection: close\r\n\r\n{body}",
+            self.port,
+            body.len()
+        )
+        .map_err(|e| e.to_string())?;
+        // ChromeDriver keeps the connection open: read the head, then Content-Length bytes.
+        let mut all = vec![];
+        let mut buf = [0u8; 65536];
+        let (head_end, length) = loop {
+            let n = s.read(&mut buf).map_err(|e| e.to_string())?;
+            if n == 0 {
+                return Err(format!("ChromeDriver closed the connection: {all:?}"));
+            }
+            all.extend_from_slice(&buf[..n]);
+            if let Some(end) = all.windows(4).position(|w| w == b"\r\n\r\n") {
+                let head = String::from_utf8_lossy(&all[..end]).to_ascii_lowercase();
+                let length = head
+                    .lines()
+                    .find_map(|l| l.strip_prefix("content-length:"))
+                    .and_then(|v| v.trim().parse::<usize>().ok())
+                    .ok_or_else(|| format!("no Content-Length in {head}"))?;
+                break (end + 4, length);
+            }
+        };
+        while all.len() < head_end + length {
+            let n = s.read(&mut buf).map_err(|e| e.to_string())?;
+            if n == 0 {
+                break;
+            }
+            all.extend_from_slice(&buf[..n]);
+        }
+        let text = String::from_utf8_lossy(&all[head_end..]);
+        let v: Value = serde_json::from_str(&text).map_err(|e| format!("{e}: {text}"))?;
+        if v["value"]["error"].is_string() {
+            return Err(v["value"].to_string());
+        }
+        Ok(v["value"].clone())
+    }
+
+    fn session_call(&self, method: &str, path: &str, body: Option<Value>) -> Value {
+        self.call(method, &format!("/session/{}{path}", self.session), body)
+            .unwrap_or_else(|e| panic!("WebDriver {method} {path}: {e}"))
+    }
+
+    /// Runs `script` in the page and returns its value.
+    fn run(&self, script: &str) -> Value {
+        self.session_call(
+            "POST",
+            "/execute/sync",
+            Some(json!({ "script": script, "args": [] })),
+        )
+    }
+
+    /// Waits (up to `secs`) for `script` to return something other than null or false.
+    fn wait(&self, secs: u64, what: &str, script: &str) -> Value {
+        let start = Instant::now();
+        loop {
+            let v = self.run(script);
+            if !v.is_null() && v != json!(false) {
+                return v;
+            }
+            assert!(
+                start.elapsed().as_secs() < secs,
+                "waited {secs} s for {what}"
+            );
+            std::thread::sleep(Duration::from_millis(50));
+        }
+    }
+}
+
+fn free_port() -> u16 {
+    std::net::TcpListener::bind("127.0.0.1:0")
+        .unwrap()
+        .local_addr()
+        .unwrap()
+        .port()
+}
+
+/// Starts ChromeDriver and a headless Chromium session, or says why not.
+fn browser() -> Option<Driver> {
+    let required = std::env::var("SNELL_BROWSER_TEST").is_ok_and(|v| v == "require");
+    if !std::path::Path::new(CHROMIUM).exists() || !std::path::Path::new(DRIVER).exists() {
+        assert!(
+            !required,
+            "SNELL_BROWSER_TEST=require, but {CHROMIUM} or {DRIVER} is missing"
+        );
+        eprintln!(
+            "skipped: the browser test needs Chromium and ChromeDriver (apt-get install chromium chromium-driver), then run `cargo test browser`"
+        );
+        return None;
+    }
+    let port = free_port();
+    let child = Command::new(DRIVER)
+        .arg(format!("--port={port}"))
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .spawn()
+        .unwrap();
+    let mut driver = Driver {
+        child,
+        port,
+        session: String::new(),
+    };
+    let profile = super::super::scratch("browser-profile");
+    let caps = json!({ "capabilities": { "alwaysMatch": {
+        "browserName": "chrome",
+        "goog:chromeOptions": {
+            "binary": CHROMIUM,
+            "args": [
+                "--headless=new", "--no-sandbox", "--disable-gpu", "--disable-dev-shm-usage",
+                "--disable-quic", "--no-first-run", "--disable-background-networking",
+                "--disable-component-update", "--disable-sync", "--window-size=1400,820",
+                "--hide-scrollbars", format!("--user-data-dir={}", profile.display()),
+            ],
+        },
+    }}});
+    let start = Instant::now();
+    let session = loop {
+        match driver.call("POST", "/session", Some(caps.clone())) {
+            Ok(v) => break v,
+            Err(e) if start.elapsed().as_secs() < 30 => {
+                let _ = e;
+                std::thread::sleep(Duration::from_millis(100));
+            }
+            Err(e) => panic!("no browser session: {e}"),
+        }
+    };
+    driver.session = session["sessionId"].as_str().unwrap().to_string();
+    Some(driver)
+}
+
+#[test]
+fn browser_shows_follows_and_explains() {
+    let Some(driver) = browser() else {
+        return;
+    };
+    let dir = seed_copy("browser");
+    let s = start(&dir, "scenes/seed.toml", &[]);
+    let p = s.port;
+    wait_for(p, 60, "the first picture", super::current_frame);
+    driver.session_call(
+        "POST",
+        "/url",
+        Some(json!({ "url": format!("http://127.0.0.1:{p}/") })),
+    );
+    // A picture arrives over the event stream.
+    driver.wait(
+        60,
+        "a picture on the page",
+        "return document.getElementById('frame').dataset.loaded || null",
+    );
+    let first = driver.wait(
+        60,
+        "the finished picture",
+        "const p = document.getElementById('progress').textContent; return p.includes('done') ? document.getElementById('frame').dataset.frame : null",
+    );
+    assert!(
+        driver
+            .run("return document.getElementById('progress').textContent")
+            .as_str()
+            .unwrap()
+            .contains("16 / 16 spp")
+    );
+    // An edit of the scene file shows on the page.
+    let scene = dir.join("scenes/seed.toml");
+    let text = std::fs::read_to_string(&scene).unwrap();
+    let bigger = text.replace(
+        "center = [10, 8, -80]\nradius = 4\n",
+        "center = [10, 8, -80]\nradius = 7\n",
+    );
+    assert_ne!(bigger, text);
+    std::fs::write(&scene, bigger).unwrap();
+    let script = format!(
+        "const f = document.getElementById('frame').dataset.frame; return f && f !== '{}' ? f : null",
+        first.as_str().unwrap()
+    );
+    driver.wait(60, "the edited scene's picture", &script);
+    // A mistake shows its message over the picture, and its fix takes it away.
+    std::fs::write(&scene, text.replace("radius = 4\n", "radius = \"big\"\n")).unwrap();
+    let message = driver.wait(
+        60,
+        "the message",
+        "const e = document.getElementById('error'); return e.hidden ? null : e.textContent",
+    );
+    assert!(
+        message.as_str().unwrap().contains("seed.toml:114:10"),
+        "{message}"
+    );
+    std::fs::write(&scene, &text).unwrap();
+    driver.wait(
+        60,
+        "the message gone",
+        "return document.getElementById('error').hidden",
+    );
+    driver.wait(
+        60,
+        "the finished picture again",
+        "return document.getElementById('progress').textContent.includes('done') || null",
+    );
+    // A click on the diamond sphere (pixel 256, 380 of 512 x 512) explains it.
+    let img = driver.session_call(
+        "POST",
+        "/element",
+        Some(json!({ "using": "css selector", "value": "#frame" })),
+    );
+    let rect = driver.run(
+        "const r = document.getElementById('frame').getBoundingClientRect(); return [r.width, r.height]",
+    );
+    let (w, h) = (rect[0].as_f64().unwrap(), rect[1].as_f64().unwrap());
+    // Offsets from the element's centre, in CSS pixels.
+    let (dx, dy) = ((256.5 / 512.0 - 0.5) * w, (380.5 / 512.0 - 0.5) * h);
+    driver.session_call(
+        "POST",
+        "/actions",
+        Some(json!({ "actions": [{
+            "type": "pointer", "id": "mouse", "parameters": { "pointerType": "mouse" },
+            "actions": [
+                { "type": "pointerMove", "origin": { ELEMENT: img[ELEMENT] }, "x": dx.round() as i64, "y": dy.round() as i64 },
+                { "type": "pause", "duration": 300 },
+                { "type": "pointerDown", "button": 0 },
+                { "type": "pointerUp", "button": 0 },
+            ],
+        }]})),
+    );
+    let tree = driver.wait(
+        60,
+        "the explain tree",
+        "const t = document.getElementById('tree'); return t.dataset.pixel ? t.textContent : null",
+    );
+    let tree = tree.as_str().unwrap();
+    assert!(
+        tree.contains("camera ray, depth 1: hits diamond sphere (diamond)"),
+        "{tree}"
+    );
+    assert!(tree.contains("refraction ray"), "{tree}");
+    let marks = driver.run("return document.querySelectorAll('#overlay .hit').length");
+    assert!(marks.as_u64().unwrap() >= 2, "hit points drawn: {marks}");
+    // The hover says what is under the pointer.
+    driver.wait(
+        30,
+        "the hover",
+        "const h = document.getElementById('hover'); return h.hidden ? null : h.textContent",
+    );
+    if let Ok(path) = std::env::var("SNELL_SCREENSHOT") {
+        let png = driver.session_call("GET", "/screenshot", None);
+        std::fs::write(path, base64(png.as_str().unwrap())).unwrap();
+    }
+}
+
+/// Standard base64, for the screenshot WebDriver sends.
+fn base64(text: &str) -> Vec<u8> {
+    let value = |c: u8| match c {
+        b'A'..=b'Z' => Some(c - b'A'),
+        b'a'..=b'z' => Some(c - b'a' + 26),
+        b'0'..=b'9' => Some(c - b'0' + 52),
+        b'+' => Some(62),
+        b'/' => Some(63),
+        _ => None,
+    };
+    let digits: Vec<u8> = text.bytes().filter_map(value).collect();
+    digits
+        .chunks(4)
+        .flat_map(|c| {
+            let n = c.iter().fold(0u32, |n, &d| (n << 6) | d as u32) << (6 * (4 - c.len()));
+            let bytes = [(n >> 16) as u8, (n >> 8) as u8, n as u8];
+            bytes.into_iter().take(c.len().saturating_sub(1))
+        })
+        .collect()
+}

@@ -1,0 +1,329 @@
+//! Every route of `snell serve`, and the requests it must refuse.
+
+use super::{current_frame, get, post, raw, seed_copy, start, status, wait_for};
+
+/// The page and its files, the status, the frame (tone mapped on request), every debug
+/// view, the explain data and the pick, the event stream, the camera.
+#[test]
+fn every_route_answers() {
+    let dir = seed_copy("serve-routes");
+    let s = start(&dir, "scenes/seed.toml", &["--size", "96"]);
+    let p = s.port;
+    let page = get(p, "/");
+    assert_eq!(page.status, 200);
+    assert!(
+        page.header("content-type")
+            .unwrap()
+            .starts_with("text/html")
+    );
+    assert!(page.text().contains("<img id=\"frame\""));
+    assert!(
+        page.header("content-security-policy")
+            .unwrap()
+            .contains("default-src 'self'")
+    );
+    for (path, kind, needle) in [
+        ("/app.js", "text/javascript", "EventSource"),
+        ("/style.css", "text/css", "#frame-box"),
+    ] {
+        let r = get(p, path);
+        assert_eq!(r.status, 200, "{path}");
+        assert!(
+            r.header("content-type").unwrap().starts_with(kind),
+            "{path}"
+        );
+        assert!(r.text().contains(needle), "{path}");
+    }
+    let st = wait_for(p, 30, "a finished picture", |s| {
+        current_frame(s) && s["frame"]["done"] == true
+    });
+    assert_eq!(st["integrator"], "whitted");
+    assert_eq!(st["size"], serde_json::json!([96, 96]));
+    assert_eq!(st["frame"]["spp"], 16);
+    assert!(st["error"].is_null());
+    assert!(
+        st["files"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .any(|f| f.as_str().unwrap().ends_with("earth.jpg"))
+    );
+    // The frame, as a JPEG, tone mapped as asked without rendering again.
+    let plain = get(p, "/frame.jpg");
+    assert_eq!(plain.status, 200);
+    assert_eq!(plain.header("content-type"), Some("image/jpeg"));
+    assert_eq!(&plain.body[..2], &[0xFF, 0xD8]);
+    let bright = get(p, "/frame.jpg?exposure=2&tone=aces");
+    assert_eq!(bright.status, 200);
+    assert_ne!(bright.body, plain.body);
+    let decode = |b: &[u8]| image::load_from_memory(b).unwrap().to_rgb8();
+    let (a, b) = (decode(&plain.body), decode(&bright.body));
+    assert_eq!((a.width(), a.height()), (96, 96));
+    let mean = |i: &image::RgbImage| i.pixels().map(|p| p.0[0] as f64).sum::<f64>();
+    assert!(mean(&b) > mean(&a), "two stops brighter");
+    assert_eq!(status(p)["generation"], st["generation"], "no new render");
+    for bad in [
+        "/frame.jpg?tone=sepia",
+        "/frame.jpg?exposure=x",
+        "/frame.jpg?exposure=99",
+    ] {
+        assert_eq!(get(p, bad).status, 400, "{bad}");
+    }
+    // Every debug view.
+    for view in [
+        "normal", "uv", "depth", "albedo", "object", "material", "bounces",
+    ] {
+        let r = get(p, &format!("/view/{view}.png"));
+        assert_eq!(r.status, 200, "{view}");
+        assert_eq!(&r.body[1..4], b"PNG", "{view}");
+    }
+    assert_eq!(get(p, "/view/colour.png").status, 404);
+    // The diamond sphere's pixel: a Whitted tree with a refraction in it, and its points
+    // placed on the picture.
+    let pick = get(p, "/pick?x=48&y=71").json();
+    assert_eq!(pick["object"], "diamond sphere");
+    assert_eq!(pick["material"], "diamond");
+    let ex = get(p, "/explain?x=48&y=71");
+    assert_eq!(ex.status, 200);
+    let doc = ex.json();
+    assert_eq!(doc["integrator"], "whitted");
+    assert_eq!(doc["tree"]["hit"]["object"], "diamond sphere");
+    let text = ex.text();
+    assert!(text.contains("\"refraction\""), "{text}");
+    let screen = &doc["tree"]["hit"]["screen"];
+    let (x, y) = (screen[0].as_f64().unwrap(), screen[1].as_f64().unwrap());
+    assert!((x - 48.5).abs() < 0.5 && (y - 71.5).abs() < 0.5, "{screen}");
+    for bad in [
+        "/explain",
+        "/explain?x=96&y=0",
+        "/explain?x=-1&y=3",
+        "/pick?x=1",
+    ] {
+        assert_eq!(get(p, bad).status, 400, "{bad}");
+    }
+    // The event stream starts with the status.
+    let mut c = std::net::TcpStream::connect(("127.0.0.1", p)).unwrap();
+    c.set_read_timeout(Some(std::time::Duration::from_secs(30)))
+        .unwrap();
+    std::io::Write::write_all(
+        &mut c,
+        format!("GET /events HTTP/1.1\r\nHost: 127.0.0.1:{p}\r\n\r\n").as_bytes(),
+    )
+    .unwrap();
+    let mut got = vec![];
+    let mut buf = [0u8; 4096];
+    while !String::from_utf8_lossy(&got).contains("}\n\n") {
+        let n = std::io::Read::read(&mut c, &mut buf).unwrap();
+        assert!(n > 0, "the stream ended: {}", String::from_utf8_lossy(&got));
+        got.extend_from_slice(&buf[..n]);
+    }
+    let got = String::from_utf8_lossy(&got);
+    assert!(got.starts_with("HTTP/1.1 200"), "{got}");
+    assert!(
+        got.to_ascii_lowercase()
+            .contains("content-type: text/event-stream"),
+        "{got}"
+    );
+    assert!(got.contains("event: status\ndata: {"), "{got}");
+    // The camera: moved, refused when it is no camera, and put back.
+    let moved = post(
+        p,
+        "/camera",
+        r#"{"position": [10, 5, 20], "look_at": [0, 0, -60], "up": [0, 1, 0], "fov": 30}"#,
+    );
+    assert_eq!(moved.status, 200, "{}", moved.text());
+    let st = wait_for(p, 30, "the moved camera's picture", |s| {
+        s["camera_moved"] == true && current_frame(s) && s["camera"]["position"][0] == 10.0
+    });
+    assert_eq!(st["camera"]["fov"], 30.0);
+    for bad in [
+        r#"{"position": [0, 0, 0], "look_at": [0, 0, 0], "up": [0, 1, 0], "fov": 30}"#,
+        r#"{"position": [0, 0, 0], "look_at": [0, 1, 0], "up": [0, 1, 0], "fov": 30}"#,
+        r#"{"position": [0, 0, 0], "look_at": [0, 0, -1], "up": [0, 1, 0], "fov": 180}"#,
+        r#"{"position": [0, 0], "look_at": [0, 0, -1], "up": [0, 1, 0], "fov": 30}"#,
+        r#"{"position": [0, 0, 0], "look_at": [0, 0, -1], "up": [0, 1, 0], "fov": 30, "x": 1}"#,
+        "not json",
+    ] {
+        assert_eq!(post(p, "/camera", bad).status, 400, "{bad}");
+    }
+    assert_eq!(post(p, "/camera/reset", "").status, 200);
+    wait_for(p, 30, "the file's camera again", |s| {
+        s["camera_moved"] == false && s["camera"]["position"][0] == 0.0
+    });
+    // The scene file was never written.
+    assert_eq!(
+        std::fs::read_to_string(dir.join("scenes/seed.toml")).unwrap(),
+        std::fs::read_to_string(super::super::repo("scenes/seed.toml")).unwrap()
+    );
+    // Other methods.
+    for (method, path) in [
+        ("PUT", "/"),
+        ("DELETE", "/status"),
+        ("POST", "/frame.jpg"),
+        ("GET", "/camera"),
+    ] {
+        let r = raw(
+            p,
+            &format!(
+                "{method} {path} HTTP/1.1\nHost: 127.0.0.1:{p}\nContent-Length: 0\nConnection: close"
+            ),
+            b"",
+        );
+        assert_eq!(r.status, 405, "{method} {path}");
+    }
+}
+
+/// No URL reaches a file: `..`, encoded dots and slashes, absolute paths, the scene's own
+/// name, a symlink beside it. Only the page's three files and the routes answer.
+#[test]
+fn hostile_paths_reach_no_file() {
+    let dir = seed_copy("serve-paths");
+    #[cfg(unix)]
+    std::os::unix::fs::symlink("/etc/passwd", dir.join("scenes/link")).unwrap();
+    let s = start(&dir, "scenes/seed.toml", &["--size", "32"]);
+    let p = s.port;
+    for path in [
+        "/../Cargo.toml",
+        "/../../../../etc/passwd",
+        "/%2e%2e/%2e%2e/%2e%2e/etc/passwd",
+        "/%2E%2E%2F%2E%2E%2Fetc%2Fpasswd",
+        "/..%2f..%2f..%2fetc%2fpasswd",
+        "/..\\..\\etc\\passwd",
+        "//etc/passwd",
+        "/etc/passwd",
+        "/scenes/seed.toml",
+        "/seed.toml",
+        "/scenes/link",
+        "/link",
+        "/assets/earth.jpg",
+        "/view/../../scenes/seed.toml",
+        "/view/%2e%2e/seed.toml",
+        "/app.js/../../Cargo.toml",
+        "/./app.js/..",
+        "/frame.jpg/../../etc/passwd",
+        "/index.html",
+        "http://127.0.0.1/../etc/passwd",
+        "*",
+    ] {
+        let r = get(p, path);
+        assert!(matches!(r.status, 400 | 404), "{path}: {}", r.status);
+        let body = r.text();
+        assert!(
+            !body.contains("root:") && !body.contains("[camera]") && !body.contains("[package]"),
+            "{path} leaked a file: {body}"
+        );
+    }
+    // A request line that is no HTTP at all gets no page, and the server goes on.
+    let mut c = std::net::TcpStream::connect(("127.0.0.1", p)).unwrap();
+    std::io::Write::write_all(&mut c, b"GARBAGE\r\n\r\n").unwrap();
+    c.set_read_timeout(Some(std::time::Duration::from_secs(10)))
+        .unwrap();
+    let mut answer = vec![];
+    let _ = std::io::Read::read_to_end(&mut c, &mut answer);
+    let answer = String::from_utf8_lossy(&answer);
+    assert!(!answer.contains(" 200 "), "{answer}");
+    assert_eq!(get(p, "/status").status, 200);
+}
+
+/// DNS rebinding: a page elsewhere that makes its own name point at 127.0.0.1 sends its own
+/// name as Host; such requests, and ones without a Host, are refused. Cross-origin requests
+/// (another site's page reading the stream or moving the camera) are refused too.
+#[test]
+fn foreign_hosts_and_origins_are_refused() {
+    let dir = seed_copy("serve-hosts");
+    let s = start(&dir, "scenes/seed.toml", &["--size", "32"]);
+    let p = s.port;
+    for host in [
+        format!("attacker.example:{p}"),
+        "attacker.example".to_string(),
+        format!("127.0.0.1:{}", p.wrapping_add(1)),
+        format!("localhost.attacker.example:{p}"),
+    ] {
+        let r = raw(
+            p,
+            &format!("GET /status HTTP/1.1\nHost: {host}\nConnection: close"),
+            b"",
+        );
+        assert_eq!(r.status, 403, "Host: {host}");
+        assert!(!r.text().contains("\"frame\""), "Host: {host}");
+    }
+    let none = raw(p, "GET /status HTTP/1.0", b"");
+    assert_eq!(none.status, 403, "no Host");
+    for ok in [
+        format!("localhost:{p}"),
+        format!("LOCALHOST:{p}"),
+        format!("[::1]:{p}"),
+    ] {
+        let r = raw(
+            p,
+            &format!("GET /status HTTP/1.1\nHost: {ok}\nConnection: close"),
+            b"",
+        );
+        assert_eq!(r.status, 200, "Host: {ok}");
+    }
+    let body = r#"{"position": [1, 1, 1], "look_at": [0, 0, -1], "up": [0, 1, 0], "fov": 30}"#;
+    for origin in [
+        "http://attacker.example",
+        "null",
+        &format!("https://127.0.0.1:{p}"),
+    ] {
+        let events = raw(
+            p,
+            &format!(
+                "GET /events HTTP/1.1\nHost: 127.0.0.1:{p}\nOrigin: {origin}\nConnection: close"
+            ),
+            b"",
+        );
+        assert_eq!(events.status, 403, "events from {origin}");
+        let camera = raw(
+            p,
+            &format!(
+                "POST /camera HTTP/1.1\nHost: 127.0.0.1:{p}\nOrigin: {origin}\nContent-Length: {}\nConnection: close",
+                body.len()
+            ),
+            body.as_bytes(),
+        );
+        assert_eq!(camera.status, 403, "camera from {origin}");
+    }
+    assert_eq!(status(p)["camera_moved"], false);
+    // A body past the limit is not read whole.
+    let big = format!("{{\"position\": [{}1, 1, 1]}}", " ".repeat(10_000));
+    assert_eq!(post(p, "/camera", &big).status, 413);
+}
+
+/// A scene with a mistake when the server starts: the page shows the same message as
+/// `snell check`; a scene file that does not exist is refused at once.
+#[test]
+fn a_broken_scene_is_shown_and_a_missing_one_refused() {
+    let dir = super::super::scratch("serve-broken");
+    std::fs::write(
+        dir.join("bad.toml"),
+        "[camera]\nlook_at = [0, 0, -1]\n[materials.m]\ncolour = 1\n",
+    )
+    .unwrap();
+    let s = start(&dir, "bad.toml", &[]);
+    let st = wait_for(s.port, 30, "the error", |s| s["error"].is_string());
+    let check = std::process::Command::new(env!("CARGO_BIN_EXE_snell"))
+        .args(["check", "bad.toml"])
+        .current_dir(&dir)
+        .output()
+        .unwrap();
+    let check = String::from_utf8_lossy(&check.stderr);
+    assert_eq!(
+        st["error"].as_str().unwrap(),
+        check,
+        "the page shows what check prints"
+    );
+    assert!(
+        check.contains("bad.toml:4:1") && check.contains("did you mean `color`?"),
+        "{check}"
+    );
+    assert!(st["frame"].is_null());
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_snell"))
+        .args(["serve", "nowhere.toml", "--port", "0"])
+        .current_dir(&dir)
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("cannot read nowhere.toml"));
+}
