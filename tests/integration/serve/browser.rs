@@ -288,6 +288,11 @@ fn browser_shows_follows_and_explains() {
         "const h = document.getElementById('hover'); return h.hidden ? null : h.textContent",
     );
     if let Ok(path) = std::env::var("SNELL_SCREENSHOT") {
+        driver.wait(
+            60,
+            "the finished picture for the screenshot",
+            "return document.getElementById('progress').textContent.includes('done') || null",
+        );
         let png = driver.session_call("GET", "/screenshot", None);
         std::fs::write(path, base64(png.as_str().unwrap())).unwrap();
     }
