@@ -197,7 +197,26 @@ pub(crate) fn run(shared: &Shared, watch: &dyn Fn(&[PathBuf])) {
             Work::Render => {}
         }
         shared.cancel.store(false, Ordering::SeqCst);
-        render(shared);
+        // A render that fails (or a bug that panics in it) is shown on the page, and the
+        // server goes on: the next save or camera move tries again.
+        let failed = match std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| render(shared)))
+        {
+            Ok(Ok(())) => None,
+            Ok(Err(e)) => Some(e),
+            Err(panic) => Some(
+                panic
+                    .downcast_ref::<&str>()
+                    .map(|s| s.to_string())
+                    .or_else(|| panic.downcast_ref::<String>().cloned())
+                    .unwrap_or_else(|| "it stopped unexpectedly".into()),
+            ),
+        };
+        if let Some(why) = failed {
+            let mut s = shared.lock();
+            s.error = Some(format!("error: the render failed: {why}\n"));
+            s.version += 1;
+            shared.announce(s);
+        }
     }
 }
 
@@ -308,12 +327,12 @@ fn preview_size(scene: &mut Scene, size: u32) {
 }
 
 /// Renders the scene shown until it has all its samples, a change cancels it, or the server
-/// stops.
-fn render(shared: &Shared) {
+/// stops; an error says why it could not.
+fn render(shared: &Shared) -> Result<(), String> {
     let (scene, generation) = {
         let mut s = shared.lock();
         let Some(scene) = s.scene.clone() else {
-            return;
+            return Ok(());
         };
         s.generation += 1;
         // The camera may have changed since the scene was loaded.
@@ -351,12 +370,10 @@ fn render(shared: &Shared) {
             let n = per_sample.map_or(1, |t| ((PASS_TIME / t) as u32).clamp(1, 64));
             let n = n.min(target - done);
             let pass_start = Instant::now();
-            let Ok(stats) = render_pass(&scene, integrator, &mut film, done..done + n, &options)
-            else {
-                return;
-            };
+            let stats = render_pass(&scene, integrator, &mut film, done..done + n, &options)
+                .map_err(|e| e.to_string())?;
             if stats.tiles_done < film.grid().count() {
-                return;
+                return Ok(());
             }
             per_sample = Some(pass_start.elapsed().as_secs_f64() / n as f64);
             (done, passes, rays) = (done + n, passes + 1, rays + stats.rays.total());
@@ -376,16 +393,15 @@ fn render(shared: &Shared) {
         let counts: &[u32] = if target > 1 { &[1, target] } else { &[1] };
         for (pass, &spp) in counts.iter().enumerate() {
             if cancelled() {
-                return;
+                return Ok(());
             }
             let mut this = (*scene).clone();
             this.settings.spp = spp;
             let mut film = Film::new(this.settings.width, this.settings.height);
-            let Ok(stats) = render_pass(&this, integrator, &mut film, 0..spp, &options) else {
-                return;
-            };
+            let stats = render_pass(&this, integrator, &mut film, 0..spp, &options)
+                .map_err(|e| e.to_string())?;
             if stats.tiles_done < film.grid().count() {
-                return;
+                return Ok(());
             }
             rays += stats.rays.total();
             let last = spp == target;
@@ -401,6 +417,7 @@ fn render(shared: &Shared) {
             );
         }
     }
+    Ok(())
 }
 
 /// Makes `image` the newest frame, if its render is still the one shown.
