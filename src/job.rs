@@ -25,6 +25,10 @@ pub struct Overrides {
     pub sampler: Option<crate::sampler::SamplerKind>,
     /// The path tracer's clamp (`--clamp`).
     pub clamp: Option<f32>,
+    /// Exposure of 8-bit outputs, in stops (`--exposure`).
+    pub exposure: Option<f32>,
+    /// Tone curve of 8-bit outputs (`--tonemap`).
+    pub tonemap: Option<crate::output::tone::ToneCurve>,
 }
 
 impl Overrides {
@@ -38,6 +42,8 @@ impl Overrides {
         i.kind = self.integrator.unwrap_or(i.kind);
         i.sampler = self.sampler.unwrap_or(i.sampler);
         i.clamp = self.clamp.or(i.clamp);
+        s.tone.exposure = self.exposure.unwrap_or(s.tone.exposure);
+        s.tone.curve = self.tonemap.unwrap_or(s.tone.curve);
     }
 }
 

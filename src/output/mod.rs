@@ -112,13 +112,24 @@ pub fn encode_display(
     Ok(bytes)
 }
 
-/// Encodes the image in `format`.
+/// Encodes the image in `format` (a PNG as it is, clamped).
 pub fn encode(img: &Image, format: OutputFormat, path: &Path) -> Result<Vec<u8>, OutputError> {
+    encode_toned(img, format, path, &tone::Tone::default())
+}
+
+/// Encodes the image in `format`: a PNG after `tone`'s exposure and curve, an EXR linear as
+/// it is (the tone is the viewer's to choose there).
+pub fn encode_toned(
+    img: &Image,
+    format: OutputFormat,
+    path: &Path,
+    tone: &tone::Tone,
+) -> Result<Vec<u8>, OutputError> {
     use image::ImageEncoder;
     let mut bytes = vec![];
     let result = match format {
         OutputFormat::Png => image::codecs::png::PngEncoder::new(&mut bytes).write_image(
-            &to_srgb8(img),
+            &to_srgb8_toned(img, tone),
             img.width,
             img.height,
             image::ExtendedColorType::Rgb8,
@@ -234,7 +245,12 @@ impl PendingOutput {
     /// Encodes the image, writes it to the temporary file, flushes it to disk and renames it
     /// over the destination.
     pub fn commit(self, img: &Image) -> Result<(), OutputError> {
-        let bytes = encode(img, self.format, self.path())?;
+        self.commit_toned(img, &tone::Tone::default())
+    }
+
+    /// [`PendingOutput::commit`] with a PNG's values after `tone` (an EXR stays linear).
+    pub fn commit_toned(self, img: &Image, tone: &tone::Tone) -> Result<(), OutputError> {
+        let bytes = encode_toned(img, self.format, self.path(), tone)?;
         self.commit_bytes(&bytes)
     }
 

@@ -4,8 +4,19 @@
 
 use crate::math::Color;
 
-/// How values above 1 are brought into range.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+/// How values above 1 are brought into range (`[image] tonemap`, `--tonemap`).
+#[derive(
+    Clone,
+    Copy,
+    Debug,
+    Default,
+    PartialEq,
+    Eq,
+    serde::Deserialize,
+    serde::Serialize,
+    schemars::JsonSchema,
+)]
+#[serde(rename_all = "lowercase")]
 pub enum ToneCurve {
     /// Cut at 1 (the default: what a PNG has always shown).
     #[default]

@@ -272,6 +272,7 @@ mod tests {
                     seed: 3,
                     filter: Filter::new(kind, None),
                     integrator: Default::default(),
+                    tone: Default::default(),
                 };
                 for (x, y) in [(0, 0), (17, 5), (63, 40)] {
                     let mut got = vec![];

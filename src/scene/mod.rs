@@ -42,6 +42,8 @@ pub struct RenderSettings {
     pub filter: Filter,
     /// The integrator and its settings.
     pub integrator: IntegratorSettings,
+    /// Exposure and tone curve of 8-bit outputs.
+    pub tone: crate::output::tone::Tone,
 }
 
 /// Which integrator renders, and the path tracer's settings (`[integrator]`).

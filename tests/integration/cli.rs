@@ -519,3 +519,106 @@ fn the_scene_file_chooses_the_integrator() {
     );
     assert!(stdout(&o).contains("3 spp"), "{}", stdout(&o));
 }
+
+/// `--exposure` and `--tonemap` (and the scene's `[image] exposure` and `tonemap`) change a
+/// PNG and leave an EXR linear; bad values are told what they should be.
+#[test]
+fn exposure_and_tone_curve_shape_the_png_only() {
+    let dir = scratch("tone");
+    let scene = write_scene(
+        &dir,
+        "s.toml",
+        "[image]\nwidth = 24\nheight = 16\n[camera]\nlook_at = [0, 0, -1]\n\
+         [materials.m]\ncolor = [0.9, 0.6, 0.3]\n[[lights]]\ntype = \"point\"\nposition = [3, 3, 0]\nintensity = 3\n\
+         [[objects]]\ntype = \"sphere\"\ncenter = [0, 0, -3]\nradius = 1\nmaterial = \"m\"\n",
+    );
+    let png = |args: &[&str], name: &str| {
+        expect(
+            &[&["render", scene.as_str(), "-o", name, "-q"], args].concat(),
+            &dir,
+            0,
+        );
+        image::open(dir.join(name)).unwrap().to_rgb8()
+    };
+    let sum = |i: &image::RgbImage| i.pixels().map(|p| p.0[2] as u64).sum::<u64>();
+    let plain = png(&[], "plain.png");
+    let bright = png(&["--exposure", "1"], "bright.png");
+    let dark = png(&["--exposure", "-1.5"], "dark.png");
+    assert!(sum(&bright) > sum(&plain) && sum(&dark) < sum(&plain));
+    // A curve brings the clipped highlight back below white.
+    let clipped = |i: &image::RgbImage| i.pixels().filter(|p| p.0[0] == 255).count();
+    assert!(clipped(&plain) > 0, "the light is bright enough to clip");
+    for curve in ["reinhard", "aces"] {
+        assert_eq!(clipped(&png(&["--tonemap", curve], "c.png")), 0, "{curve}");
+    }
+    // The scene's own keys do the same as the flags; the flags win.
+    let keyed = write_scene(
+        &dir,
+        "k.toml",
+        &std::fs::read_to_string(&scene).unwrap().replace(
+            "height = 16\n",
+            "height = 16\nexposure = 1\ntonemap = \"clamp\"\n",
+        ),
+    );
+    expect(&["render", keyed.as_str(), "-o", "k.png", "-q"], &dir, 0);
+    assert_eq!(image::open(dir.join("k.png")).unwrap().to_rgb8(), bright);
+    expect(
+        &[
+            "render",
+            keyed.as_str(),
+            "-o",
+            "k0.png",
+            "-q",
+            "--exposure",
+            "0",
+        ],
+        &dir,
+        0,
+    );
+    assert_eq!(image::open(dir.join("k0.png")).unwrap().to_rgb8(), plain);
+    // An EXR is linear, whatever the exposure.
+    expect(&["render", scene.as_str(), "-o", "a.exr", "-q"], &dir, 0);
+    expect(
+        &[
+            "render",
+            scene.as_str(),
+            "-o",
+            "b.exr",
+            "-q",
+            "--exposure",
+            "3",
+            "--tonemap",
+            "aces",
+        ],
+        &dir,
+        0,
+    );
+    assert_eq!(
+        std::fs::read(dir.join("a.exr")).unwrap(),
+        std::fs::read(dir.join("b.exr")).unwrap()
+    );
+    // Bad values.
+    let o = expect(&["render", scene.as_str(), "--exposure", "99"], &dir, 2);
+    assert!(stderr(&o).contains("not an exposure"), "{}", stderr(&o));
+    let o = expect(&["render", scene.as_str(), "--tonemap", "filmic"], &dir, 2);
+    assert!(
+        stderr(&o).contains("use clamp, reinhard or aces"),
+        "{}",
+        stderr(&o)
+    );
+    for (keys, at, says) in [
+        ("exposure = 40\n", "bad.toml:4:12", "between -20 and 20"),
+        ("tonemap = \"sepia\"\n", "bad.toml:4:11", "sepia"),
+    ] {
+        let text = std::fs::read_to_string(&scene)
+            .unwrap()
+            .replace("height = 16\n", &format!("height = 16\n{keys}"));
+        let bad = write_scene(&dir, "bad.toml", &text);
+        let o = expect(&["check", bad.as_str()], &dir, 2);
+        assert!(
+            stderr(&o).contains(at) && stderr(&o).contains(says),
+            "{}",
+            stderr(&o)
+        );
+    }
+}

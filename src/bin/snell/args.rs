@@ -133,6 +133,14 @@ pub(crate) struct RenderArgs {
     /// Seed of the sample jitter; the same seed gives the same bytes.
     #[arg(long, allow_negative_numbers = true, value_parser = whole::<u64>, value_name = "S")]
     pub(crate) seed: Option<u64>,
+    /// Exposure of a PNG, in stops (+1 doubles the light, -1 halves it) before the tone
+    /// curve (overrides the scene's `[image] exposure`; an EXR stays linear).
+    #[arg(long, allow_negative_numbers = true, value_parser = parse_exposure, value_name = "STOPS")]
+    pub(crate) exposure: Option<f32>,
+    /// Tone curve of a PNG: clamp (cut at 1), reinhard or aces (overrides the scene's
+    /// `[image] tonemap`).
+    #[arg(long, value_parser = parse_tonemap, value_name = "CURVE")]
+    pub(crate) tonemap: Option<snell::output::tone::ToneCurve>,
     /// Print nothing but errors.
     #[arg(short, long)]
     pub(crate) quiet: bool,
@@ -163,6 +171,20 @@ pub(crate) struct RenderArgs {
     pub(crate) checkpoint_every: f64,
     #[command(flatten)]
     pub(crate) limits: LimitArgs,
+}
+
+fn parse_exposure(s: &str) -> Result<f32, String> {
+    match s.trim().parse::<f32>() {
+        Ok(v) if (-20.0..=20.0).contains(&v) => Ok(v),
+        _ => Err(format!(
+            "`{s}` is not an exposure: give stops from -20 to 20 (0 leaves the picture as it is)"
+        )),
+    }
+}
+
+fn parse_tonemap(s: &str) -> Result<snell::output::tone::ToneCurve, String> {
+    snell::output::tone::ToneCurve::from_name(s)
+        .ok_or_else(|| format!("`{s}` is not a tone curve: use clamp, reinhard or aces"))
 }
 
 fn parse_aov(s: &str) -> Result<Vec<Aov>, String> {

@@ -65,7 +65,11 @@ pub(crate) fn render(args: RenderArgs) -> ExitCode {
         Ok(l) => l,
         Err(code) => return code,
     };
-    let overrides = args.image.overrides(args.seed);
+    let overrides = snell::job::Overrides {
+        exposure: args.exposure,
+        tonemap: args.tonemap,
+        ..args.image.overrides(args.seed)
+    };
     let job = match RenderJob::prepare(&scene_path, &overrides, &limits, resumed.as_ref()) {
         Ok(job) => job,
         Err(e) => return job_error(e),
@@ -199,7 +203,9 @@ pub(crate) fn render(args: RenderArgs) -> ExitCode {
         }
     }
     let written = if aovs.is_empty() {
-        pending.commit(&rendered.image).map_err(|e| e.to_string())
+        pending
+            .commit_toned(&rendered.image, &scene.settings.tone)
+            .map_err(|e| e.to_string())
     } else {
         write_aovs(
             &scene,
@@ -344,7 +350,9 @@ fn write_aovs(
         let bytes = encode_exr_layers(image, &layers, pending.path()).map_err(|e| e.to_string())?;
         return pending.commit_bytes(&bytes).map_err(|e| e.to_string());
     }
-    pending.commit(image).map_err(|e| e.to_string())?;
+    pending
+        .commit_toned(image, &scene.settings.tone)
+        .map_err(|e| e.to_string())?;
     for (a, out) in pngs {
         out.commit(&buffers.display(a, scene.settings.max_depth))
             .map_err(|e| e.to_string())?;

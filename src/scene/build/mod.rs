@@ -292,7 +292,12 @@ fn serde_problem(
     }
     if let Some(variant) = between(&message, "unknown variant `", "`") {
         let expected = backticked(message.split_once("expected").map_or("", |x| x.1));
-        let mut p = Problem::new(doc, format!("unknown type `{variant}`"));
+        // A `type` names a kind of thing; other keys (a sampler, a tone curve) take values.
+        let what = match doc.0.last() {
+            Some(super::diag::Seg::Key(k)) if k == "type" => "type",
+            _ => "value",
+        };
+        let mut p = Problem::new(doc, format!("unknown {what} `{variant}`"));
         p.span = span;
         p.help = Some(
             match did_you_mean(variant, expected.iter().map(String::as_str)) {
@@ -717,7 +722,16 @@ impl Builder<'_> {
             seed: d.seed,
             filter: Filter::new(d.filter.kind, radius),
             integrator: self.integrator(integrator),
+            tone: crate::output::tone::Tone {
+                exposure: self.exposure(d.exposure, &path.key("exposure")),
+                curve: d.tonemap,
+            },
         }
+    }
+
+    /// An exposure in stops, within what a picture can use (2^±20 is a millionfold).
+    fn exposure(&mut self, x: f32, path: &DocPath) -> f32 {
+        self.in_range(x, -20.0, 20.0, path)
     }
 
     fn integrator(&mut self, d: &IntegratorDef) -> IntegratorSettings {

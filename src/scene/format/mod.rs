@@ -91,6 +91,11 @@ pub struct ImageDef {
     pub max_depth: u32,
     /// Seed of the sample jitter.
     pub seed: u64,
+    /// Exposure of 8-bit outputs (PNG), in stops: values are multiplied by 2^exposure
+    /// before the tone curve. EXR keeps the linear values.
+    pub exposure: f32,
+    /// Tone curve of 8-bit outputs: `clamp` (cut at 1, the default), `reinhard` or `aces`.
+    pub tonemap: crate::output::tone::ToneCurve,
 }
 
 impl Default for ImageDef {
@@ -103,6 +108,8 @@ impl Default for ImageDef {
             background: ColorDef([0.0; 3]),
             max_depth: 5,
             seed: 0,
+            exposure: 0.0,
+            tonemap: crate::output::tone::ToneCurve::Clamp,
         }
     }
 }
