@@ -6,8 +6,9 @@
 //! Mitsuba 3 does: the camera ray is 1, so `max_depth = 1` shows only the lights seen
 //! directly and `max_depth = 2` is direct light. Russian roulette may end a path once it has
 //! bounced `rr_depth` times, with survival `min(max(throughput * eta^2), 0.95)`, as Mitsuba.
-//! Rays that leave the scene see the background as a constant environment (not sampled by
-//! next-event estimation). Inside a dielectric with absorption, light falls off by
+//! Rays that leave the scene see the environment (`[environment]`, sampled by next-event
+//! estimation and weighed by MIS) or, without one, the background as a constant environment
+//! (not sampled by next-event estimation). Inside a dielectric with absorption, light falls off by
 //! Beer-Lambert; Whitted's ambient term and fog are not read.
 
 use super::RayStats;
@@ -81,7 +82,7 @@ impl Path {
         loop {
             rays.deepest = rays.deepest.max(depth);
             let Some(hit) = scene.closest_hit_skipping(&ray, f32::INFINITY, skip) else {
-                let c = beta * scene.background;
+                let c = beta * self.escaped(scene, &ray, depth, specular, prev_pdf);
                 l += c;
                 if R::ACTIVE {
                     rec.end(PathEnd::Escaped {
@@ -236,6 +237,30 @@ impl Path {
         }
     }
 
+    /// What a path leaving the scene along `ray` sees: the environment (weighed by MIS
+    /// against light sampling, unless the bounce before was a delta or the camera) or, where
+    /// there is none or the camera may not see it, the background.
+    fn escaped(
+        &self,
+        scene: &Scene,
+        ray: &Ray,
+        depth: u32,
+        specular: bool,
+        prev_pdf: f32,
+    ) -> Color {
+        match &scene.environment {
+            Some(env) if env.visible || depth > 1 => {
+                let le = env.radiance(ray.dir);
+                if specular {
+                    return le;
+                }
+                let p_light = scene.light_sampler.environment_probability() * env.pdf(ray.dir);
+                le * power_heuristic(prev_pdf, p_light)
+            }
+            _ => scene.background,
+        }
+    }
+
     /// The MIS weight of emission found by a BSDF sample from `prev_point` with density
     /// `prev_pdf`: 1 after a delta bounce or for emitters light sampling never picks; with
     /// light sampling's density for the direction where it counts.
@@ -273,6 +298,7 @@ impl Path {
         let Some(mut c) = scene.light_sampler.sample(
             &scene.lights,
             &scene.area_lights,
+            scene.environment.as_ref(),
             hit.point,
             uc,
             ul,
@@ -284,7 +310,7 @@ impl Path {
         if let Some(light) = c
             .light
             .checked_sub(scene.lights.len())
-            .map(|a| &scene.area_lights[a])
+            .and_then(|a| scene.area_lights.get(a))
             && light.texture.is_some()
         {
             let side = if c.to_light.dot(v.ng) > 0.0 {
@@ -318,9 +344,10 @@ impl Path {
                     light: c.light,
                     what: if c.light < n {
                         scene.lights[c.light].kind_name().to_string()
+                    } else if let Some(a) = scene.area_lights.get(c.light - n) {
+                        format!("area light on `{}`", scene.objects[a.object].name)
                     } else {
-                        let object = scene.area_lights[c.light - n].object;
-                        format!("area light on `{}`", scene.objects[object].name)
+                        "the environment".to_string()
                     },
                     direction: c.to_light.to_array(),
                     distance: c.distance,

@@ -172,12 +172,22 @@ impl Whitted {
                     }
                     fog.apply(scene.background, f32::INFINITY)
                 }
-                _ => {
-                    if R::ACTIVE {
-                        rec.note("sees the background".into());
+                _ => match &scene.environment {
+                    // The environment as the background (hidden from camera rays when it
+                    // says so); Whitted does not light surfaces with it.
+                    Some(env) if env.visible || seg.depth > 1 => {
+                        if R::ACTIVE {
+                            rec.note("sees the environment".into());
+                        }
+                        env.radiance(ray.dir)
                     }
-                    scene.background
-                }
+                    _ => {
+                        if R::ACTIVE {
+                            rec.note("sees the background".into());
+                        }
+                        scene.background
+                    }
+                },
             };
             rec.end_ray(c);
             return c;

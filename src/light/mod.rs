@@ -5,9 +5,11 @@
 //! does not depend on its scale), as `1 / d^2` under the path tracer.
 
 pub mod area;
+pub mod environment;
 pub mod select;
 
 pub use area::{AreaLight, Emitter, ObjectLights};
+pub use environment::{Environment, EnvironmentMap, EnvironmentSample, EnvironmentSource};
 pub use select::{LightChoice, LightSampler};
 
 use crate::math::{Color, Vec3A};

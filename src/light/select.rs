@@ -1,9 +1,9 @@
 //! Choosing a light for next-event estimation: one of all the scene's lights, in proportion
 //! to its power, so a bright lamp gets the shadow rays and a faint one few. Point and spot
 //! lights and directional lights reach a point from one direction (deltas); area lights are
-//! sampled by [`AreaLight::sample`].
+//! sampled by [`AreaLight::sample`], the environment by [`Environment::sample`].
 
-use super::{AreaLight, Falloff, Light};
+use super::{AreaLight, Environment, Falloff, Light};
 use crate::math::distribution::Distribution1d;
 use crate::math::{Color, Vec2, Vec3A, luminance};
 use std::f32::consts::PI;
@@ -11,20 +11,24 @@ use std::f32::consts::PI;
 /// The scene's lights, each with its chance of being chosen.
 #[derive(Clone, Debug, PartialEq)]
 pub struct LightSampler {
-    /// Over the point, spot and directional lights, then the area lights, in order.
+    /// Over the point, spot and directional lights, then the area lights, then the
+    /// environment, in order.
     choice: Distribution1d,
-    /// How many of the former.
+    /// How many of the first.
     deltas: usize,
+    /// How many area lights.
+    areas: usize,
 }
 
 /// A light chosen for a point, and where its light comes from.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct LightChoice {
-    /// Index among all lights (point, spot and directional first, then area lights).
+    /// Index among all lights (point, spot and directional first, then area lights, then
+    /// the environment).
     pub light: usize,
     /// Unit direction from the point toward the light.
     pub to_light: Vec3A,
-    /// Distance to the light (infinite for directional lights).
+    /// Distance to the light (infinite for directional lights and the environment).
     pub distance: f32,
     /// Radiance (area lights) or irradiance over `pdf` (deltas) arriving, unshadowed.
     pub radiance: Color,
@@ -38,8 +42,14 @@ pub struct LightChoice {
 impl LightSampler {
     /// Chances in proportion to power. `radius` is the scene's bounding radius (a
     /// directional light's power is what falls on a disk of that radius; a light that does
-    /// not fall off is as bright as one that does at that distance).
-    pub fn new(lights: &[Light], area: &[AreaLight], radius: f32) -> Self {
+    /// not fall off is as bright as one that does at that distance; the environment's is
+    /// what falls on such a disk too).
+    pub fn new(
+        lights: &[Light],
+        area: &[AreaLight],
+        environment: Option<&Environment>,
+        radius: f32,
+    ) -> Self {
         let r2 = (radius * radius).max(1e-6);
         let mut weights: Vec<f32> = lights
             .iter()
@@ -70,9 +80,11 @@ impl LightSampler {
             })
             .collect();
         weights.extend(area.iter().map(AreaLight::power));
+        weights.extend(environment.map(|e| e.power(radius.max(1e-3))));
         LightSampler {
             choice: Distribution1d::new(&weights),
             deltas: lights.len(),
+            areas: area.len(),
         }
     }
 
@@ -86,12 +98,20 @@ impl LightSampler {
         self.choice.probability(self.deltas + i)
     }
 
-    /// A light chosen by `uc`, and a point of it by `u` for an area light, seen from
-    /// `from`; point and spot lights fall off as they say, by default `default`.
+    /// The chance of choosing the environment (for MIS when a path leaves the scene).
+    pub fn environment_probability(&self) -> f32 {
+        self.choice.probability(self.deltas + self.areas)
+    }
+
+    /// A light chosen by `uc`, and a point of it by `u` for an area light (a direction for
+    /// the environment), seen from `from`; point and spot lights fall off as they say, by
+    /// default `default`.
+    #[allow(clippy::too_many_arguments)]
     pub fn sample(
         &self,
         lights: &[Light],
         area: &[AreaLight],
+        environment: Option<&Environment>,
         from: Vec3A,
         uc: f32,
         u: Vec2,
@@ -110,6 +130,17 @@ impl LightSampler {
                 radiance: s.radiance,
                 pdf: p,
                 delta: true,
+            });
+        }
+        if i >= self.deltas + self.areas {
+            let s = environment?.sample(u)?;
+            return (s.radiance != Color::ZERO).then_some(LightChoice {
+                light: i,
+                to_light: s.direction,
+                distance: f32::INFINITY,
+                radiance: s.radiance,
+                pdf: p * s.pdf,
+                delta: false,
             });
         }
         let light = &area[i - self.deltas];
@@ -150,7 +181,7 @@ mod tests {
             color: Color::splat(PI / 4.0),
             falloff: None,
         };
-        let s = LightSampler::new(&[point], &[disk(1.0), disk(10.0)], 1.0);
+        let s = LightSampler::new(&[point], &[disk(1.0), disk(10.0)], None, 1.0);
         // Powers: point 4 pi * pi / 4 = pi^2; disks pi^2 and 10 pi^2.
         assert!((s.choice.probability(0) - 1.0 / 12.0).abs() < 1e-6);
         assert!((s.area_probability(0) - 1.0 / 12.0).abs() < 1e-6);

@@ -6,6 +6,7 @@ mod aabb;
 #[cfg(test)]
 pub(crate) mod chi2;
 pub mod distribution;
+pub mod distribution2d;
 mod frame;
 mod offset;
 mod rng;

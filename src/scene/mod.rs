@@ -287,6 +287,8 @@ pub struct Scene {
     pub settings: RenderSettings,
     /// Colour of rays that hit nothing.
     pub background: Color,
+    /// Light from every direction, far away (`[environment]`), if the scene has one.
+    pub environment: Option<crate::light::Environment>,
     /// Global ambient light.
     pub ambient: Color,
     /// Optional fog.

@@ -198,6 +198,22 @@ impl ImageData {
         )
     }
 
+    /// The texel at column `x`, row `y` (from the top), linear; black outside the image.
+    pub fn texel(&self, x: u32, y: u32) -> Color {
+        if x >= self.width || y >= self.height {
+            return Color::ZERO;
+        }
+        let i = y as usize * self.width as usize + x as usize;
+        match &self.texels {
+            Texels::Bytes { rgb, linear } => Color::new(
+                linear[rgb[3 * i] as usize],
+                linear[rgb[3 * i + 1] as usize],
+                linear[rgb[3 * i + 2] as usize],
+            ),
+            Texels::Floats(t) => Color::from_array(t[i]),
+        }
+    }
+
     /// Width in pixels.
     pub fn width(&self) -> u32 {
         self.width

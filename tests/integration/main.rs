@@ -5,6 +5,7 @@ mod aov;
 mod bad;
 mod cli;
 mod docs;
+mod environment;
 mod explain;
 mod meshes;
 mod optics;

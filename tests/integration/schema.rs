@@ -318,6 +318,8 @@ filter = { type = "tent", radius = 1.5 }
 background = 0.2
 max_depth = 8
 seed = 7
+exposure = -0.5
+tonemap = "aces"
 [integrator]
 type = "path"
 sampler = "independent"
@@ -336,6 +338,12 @@ color = 0.7
 start = 1
 end = 30
 density = 0.1
+[environment]
+type = "image"
+file = "sky.hdr"
+rotate = [0, 90, 0]
+scale = 2
+visible = false
 [textures.plain]
 type = "solid"
 color = [1, 0, 0]
@@ -527,8 +535,8 @@ fn the_every_key_scene_has_every_key_and_type_of_the_schema() {
     scene_words(&scene, &mut used_keys, &mut strings);
     let missing: Vec<_> = keys.iter().filter(|k| !used_keys.contains(k)).collect();
     assert!(missing.is_empty(), "keys not in EVERY_KEY: {missing:?}");
-    // A scene has one filter, one fog mode, one integrator and sampler: the edits try the
-    // others in their place.
+    // A scene has one filter, fog mode, integrator, sampler, environment and tone curve: the
+    // edits try the others in their place.
     let others = [
         "gaussian",
         "mitchell",
@@ -536,6 +544,9 @@ fn the_every_key_scene_has_every_key_and_type_of_the_schema() {
         "whitted",
         "sobol",
         "phong",
+        "constant",
+        "clamp",
+        "reinhard",
     ];
     let missing: Vec<_> = consts
         .iter()

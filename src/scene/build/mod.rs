@@ -19,6 +19,7 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 mod emitters;
+mod environment;
 mod material;
 
 /// Reads, checks and builds the scene in `path` (`.toml` or `.json`). Relative paths in it
@@ -487,6 +488,10 @@ impl Builder<'_> {
         let background = self.color(def.image.background, &root.key("image").key("background"));
         let ambient = self.color(def.world.ambient, &root.key("world").key("ambient"));
         let fog = def.fog.as_ref().map(|f| self.fog(f, &root.key("fog")));
+        let environment = def
+            .environment
+            .as_ref()
+            .and_then(|e| self.environment(e, &root.key("environment")));
 
         let mut textures = vec![];
         let mut texture_names = BTreeMap::new();
@@ -571,12 +576,17 @@ impl Builder<'_> {
                 .push("the scene has no objects: the image will be the background".into());
         }
         let emits = materials.iter().any(|m| m.emission.is_some());
-        // The path tracer is lit by the background too (a uniform environment).
+        // The path tracer is lit by the background (a uniform environment) or the
+        // environment too.
         let path = settings.integrator.kind == IntegratorKind::Path;
         if lights.is_empty() && !emits && !path {
-            self.warnings
-                .push("the scene has no lights: only ambient light will show".into());
-        } else if lights.is_empty() && !emits && background == Color::ZERO {
+            self.warnings.push(if environment.is_some() {
+                "the scene has no lights: only ambient light will show (Whitted shows the environment but does not light with it; the path tracer does)".into()
+            } else {
+                "the scene has no lights: only ambient light will show".into()
+            });
+        } else if lights.is_empty() && !emits && background == Color::ZERO && environment.is_none()
+        {
             self.warnings.push(
                 "the scene has no lights and a black background: the path tracer's image will be black"
                     .into(),
@@ -604,7 +614,7 @@ impl Builder<'_> {
             .filter_map(|o| o.world_bounds)
             .reduce(|a, b| a.union(&b))
             .map_or(1.0, |b| 0.5 * (b.max - b.min).length());
-        let light_sampler = LightSampler::new(&lights, &area_lights, radius);
+        let light_sampler = LightSampler::new(&lights, &area_lights, environment.as_ref(), radius);
         let start = std::time::Instant::now();
         let accel = Bvh::build(&objects);
         self.stats.object_bvh_time = start.elapsed();
@@ -653,6 +663,7 @@ impl Builder<'_> {
             camera,
             settings,
             background,
+            environment,
             ambient,
             fog,
             objects,

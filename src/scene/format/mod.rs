@@ -4,10 +4,12 @@
 //! become its descriptions, serde defaults its defaults (shown where the default's type is
 //! `Serialize`, which is why a few of these derive it).
 
+mod environment;
 mod integrator;
 mod material;
 mod values;
 
+pub use environment::EnvironmentDef;
 pub use integrator::{IntegratorDef, IntegratorKind, SamplerDef};
 pub use material::{MaterialDef, MaterialKind};
 pub use values::{ColorDef, ColorParamDef, ScalarDef, ScaleDef, UvScaleDef};
@@ -45,6 +47,9 @@ pub struct SceneFile {
     pub world: WorldDef,
     /// Optional fog.
     pub fog: Option<FogDef>,
+    /// Light from every direction, far away: an image or one colour (the path tracer's
+    /// light; the picture's background).
+    pub environment: Option<EnvironmentDef>,
     /// Named textures.
     #[serde(default)]
     pub textures: BTreeMap<String, TextureDef>,
