@@ -7,37 +7,31 @@ diffuse ball, a perfect mirror) on a diffuse disk, lit only by an HDR environmen
 box filter, 320 x 180.  Materials are those both renderers define the same way (no
 plastic, no named metals, whose RGB tables differ).
 
-What it does, in one run
-------------------------
-(a) Writes the scene as snell TOML (WORKDIR/env.toml) and as a Mitsuba dict; Mitsuba's
-    ``envmap`` puts its image's centre column toward +z where snell's faces -z, so Mitsuba's
-    gets ``to_world`` = rotate(y, ROTATE + 180).
-(b) Renders a reference with each at --ref-spp samples (Mitsuba in chunks with seeds 1000,
-    1001, ..., in variant llvm_ad_rgb), cached in WORKDIR and reused unless --fresh.
-(c) Times each renderer at --spp (Mitsuba: ``mi.render`` after a warm-up, scene loading not
-    counted; snell: the whole process) and takes each image's RMSE against its own
-    reference.
-(d) Prints the agreement of the two references: the mean relative difference
-    sum|A-B|/sum|B| (snell A, Mitsuba B), RMSE and per-channel mean ratios, and what the
-    references' own noise alone gives (from two half-sample references of snell's).
+What it does
+------------
+Writes the scene as snell TOML (WORKDIR/env.toml) and as a Mitsuba dict, then runs
+bench/vs-mitsuba.py's comparison on them: Mitsuba (llvm_ad_rgb) at 64 spp, timed after a
+warm-up, its RMSE against its own converged reference; snell at a rising series of sample
+counts, timed as whole processes, each against snell's own reference; the time at which
+snell reaches Mitsuba's 64-spp RMSE (log-log interpolated), and the agreement of the two
+references (mean relative difference, the 2 % check).  References are cached in WORKDIR
+(default target/vs-mitsuba-env), one per map and turn.  Mitsuba's ``envmap`` puts its image's
+centre column toward +z where snell's faces -z, so Mitsuba's gets ``to_world`` =
+rotate(y, ROTATE + 180).
 
 How to run
 ----------
     pip install mitsuba numpy && apt-get install libllvm19
     cargo build --release
-    python3 bench/vs-mitsuba-env.py                           # studio.hdr
+    python3 bench/vs-mitsuba-env.py --repeats 3 --spp-list 8,16,24,32,48,64,96 --no-stop
     python3 bench/vs-mitsuba-env.py --env assets/env/venice-sunset.hdr --rotate 0
 
-A manual benchmark, not run by CI.  Helpers (reading and writing EXR, the comparison) come
-from bench/vs-mitsuba.py.
+A manual benchmark, not run by CI.
 """
 import argparse
 import importlib.util
 import os
-import subprocess
-import time
-
-import numpy as np
+import sys
 
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 _spec = importlib.util.spec_from_file_location('vs_mitsuba', os.path.join(REPO, 'bench', 'vs-mitsuba.py'))
@@ -58,19 +52,19 @@ FLOOR_RADIUS, FLOOR_ALBEDO = 6.0, 0.45
 METAL_ETA, METAL_K, METAL_ALPHA = [0.2, 0.45, 1.4], [3.6, 2.4, 1.9], 0.15
 
 
-def snell_toml(env, rotate, spp):
+def snell_toml(env, rotate, sampler):
     balls = ''.join(
         f'[[objects]]\ntype = "sphere"\ncenter = {c}\nradius = {r}\nmaterial = "{m}"\n' for c, r, m in BALLS)
     return f'''# Written by bench/vs-mitsuba-env.py: the same scene is given to Mitsuba 3.
 [image]
 width = {WIDTH}
 height = {HEIGHT}
-samples = {spp}
+samples = 64
 max_depth = {MAX_DEPTH}
 filter = {{ type = "box" }}
 [integrator]
 type = "path"
-sampler = "independent"
+sampler = "{sampler}"
 rr_depth = {RR_DEPTH}
 [camera]
 position = {CAMERA['origin']}
@@ -134,71 +128,29 @@ def mitsuba_scene(mi, env, rotate):
     return mi.load_dict(d)
 
 
-def snell_render(args, toml, spp, seed, out):
-    cmd = [os.path.join(REPO, args.snell), 'render', toml, '--spp', str(spp), '--seed', str(seed),
-           '--output', out]
-    t0 = time.perf_counter()
-    subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL, cwd=REPO)
-    return time.perf_counter() - t0
-
-
 def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument('--snell', default='target/release/snell')
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter,
+                                 epilog='Every other option is bench/vs-mitsuba.py\'s (--spp-list, --repeats, '
+                                        '--ref-spp, --snell-ref-spp, --no-stop, ...).')
     ap.add_argument('--env', default='assets/env/studio.hdr', help='environment map (relative to the repo root)')
     ap.add_argument('--rotate', type=float, default=-90, help="snell's rotate about y, degrees")
-    ap.add_argument('--ref-spp', type=int, default=2048)
-    ap.add_argument('--ref-chunk', type=int, default=256)
-    ap.add_argument('--spp', type=int, default=64, help='samples per pixel of the timed renders')
-    ap.add_argument('--repeats', type=int, default=3)
+    ap.add_argument('--sampler', default='sobol', choices=['sobol', 'independent'], help="snell's sampler")
     ap.add_argument('--workdir', default=os.path.join(REPO, 'target', 'vs-mitsuba-env'))
-    ap.add_argument('--fresh', action='store_true', help='render the references again')
-    ap.add_argument('--peers', default=os.environ.get('SNELL_PEERS', '/work/shared/peers'))
-    args = ap.parse_args()
-
+    args, rest = ap.parse_known_args()
     os.makedirs(args.workdir, exist_ok=True)
     env = os.path.abspath(os.path.join(REPO, args.env))
-    compare, compare_src = vm.get_compare(args.peers)
-    mi, dr = vm.import_mitsuba(0)
-    tag = f'{os.path.splitext(os.path.basename(env))[0]}-{args.rotate:g}-{args.ref_spp}'
     toml = os.path.join(args.workdir, 'env.toml')
     with open(toml, 'w') as f:
-        f.write(snell_toml(os.path.relpath(env, args.workdir), args.rotate, args.spp))
-
-    scene = mitsuba_scene(mi, env, args.rotate)
-    mref = os.path.join(args.workdir, f'mitsuba-{tag}.exr')
-    if args.fresh or not os.path.exists(mref):
-        acc = np.zeros((HEIGHT, WIDTH, 3))
-        chunks = max(1, args.ref_spp // args.ref_chunk)
-        for i in range(chunks):
-            img, _ = vm.mitsuba_render(mi, dr, scene, args.ref_chunk, vm.REF_SEED_BASE + i)
-            acc += np.array(img, dtype=np.float64)[..., :3]
-        vm.write_exr(mi, mref, acc / chunks)
-    sref = [os.path.join(args.workdir, f'snell-{tag}-{h}.exr') for h in 'ab']
-    for seed, path in enumerate(sref):
-        if args.fresh or not os.path.exists(path):
-            snell_render(args, toml, args.ref_spp // 2, 1000 + seed, path)
-    a, b = (vm.read_exr(mi, p) for p in sref)
-    s_ref, m_ref = (a + b) / 2, vm.read_exr(mi, mref)
-
-    vm.mitsuba_render(mi, dr, scene, args.spp, vm.WARMUP_SEED)
-    m_time, m_img = min((vm.mitsuba_render(mi, dr, scene, args.spp, 0)[::-1] for _ in range(args.repeats)),
-                        key=lambda t: t[0])
-    m_img = np.array(m_img, dtype=np.float64)[..., :3]
-    s_out = os.path.join(args.workdir, f'snell-{args.spp}.exr')
-    s_time = min(snell_render(args, toml, args.spp, 0, s_out) for _ in range(args.repeats))
-    s_img = vm.read_exr(mi, s_out)
-
-    rmse = lambda x, y: float(np.sqrt(np.mean((x - y) ** 2)))
-    print(f'scene: {args.env} rotated {args.rotate:g} degrees about y, {WIDTH}x{HEIGHT}, metric: {compare_src}')
-    print(f'{"":8} {"spp":>5} {"time s":>8} {"RMSE vs own ref":>16}')
-    print(f'{"mitsuba":8} {args.spp:>5} {m_time:>8.3f} {rmse(m_img, m_ref):>16.5f}')
-    print(f'{"snell":8} {args.spp:>5} {s_time:>8.3f} {rmse(s_img, s_ref):>16.5f}')
-    c = compare(s_ref.astype(np.float32), m_ref.astype(np.float32))
-    noise = compare(a.astype(np.float32), b.astype(np.float32))['mean_rel_diff'] / 2 ** 0.5
-    print(f"references ({args.ref_spp} spp each): mean relative difference {c['mean_rel_diff']:.5f} "
-          f"(their noise alone, estimated: {noise:.5f}), RMSE {c['rmse']:.5f}, "
-          f"mean ratio snell/mitsuba {', '.join(f'{x:.4f}' for x in c['mean_ratio_a_over_b'])}")
+        f.write(snell_toml(os.path.relpath(env, args.workdir), args.rotate, args.sampler))
+    tag = f'{os.path.splitext(os.path.basename(env))[0]}-{args.rotate:g}'
+    vm.WIDTH, vm.HEIGHT = WIDTH, HEIGHT
+    vm.mitsuba_scene = lambda mi: mitsuba_scene(mi, env, args.rotate)
+    sys.argv = [sys.argv[0], '--scene', toml, '--workdir', args.workdir,
+                '--mitsuba-ref', os.path.join(args.workdir, f'mitsuba-ref-{tag}.exr'),
+                '--snell-ref', os.path.join(args.workdir, f'snell-ref-{tag}-{args.sampler}.exr')] + rest
+    print(f'scene: {args.env} turned {args.rotate:g} degrees about y; snell sampler {args.sampler}; '
+          f'snell scene {os.path.relpath(toml, REPO)}')
+    vm.main()
 
 
 if __name__ == '__main__':

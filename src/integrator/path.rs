@@ -250,11 +250,11 @@ impl Path {
     ) -> Color {
         match &scene.environment {
             Some(env) if env.visible || depth > 1 => {
-                let le = env.radiance(ray.dir);
                 if specular {
-                    return le;
+                    return env.radiance(ray.dir);
                 }
-                let p_light = scene.light_sampler.environment_probability() * env.pdf(ray.dir);
+                let (le, pdf) = env.radiance_pdf(ray.dir);
+                let p_light = scene.light_sampler.environment_probability() * pdf;
                 le * power_heuristic(prev_pdf, p_light)
             }
             _ => scene.background,

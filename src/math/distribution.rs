@@ -1,7 +1,10 @@
 //! Piecewise-constant distributions: choosing one of many things in proportion to a weight
 //! (a light by its power), or a point of `[0, 1)` with a density that is constant over each
-//! of `n` equal pieces (rows and columns of an environment map, later). Built once, then
-//! sampled in `O(log n)`.
+//! of `n` equal pieces (the rows and columns of an environment map). Built once, then
+//! sampled in expected constant time: a guide table sends `u` to the few pieces whose
+//! cumulative range can hold it, and a short search among them finds the one (the same
+//! piece a search of the whole table finds, so the map from `u` stays monotonic and keeps
+//! a low-discrepancy sampler's strata).
 
 /// A distribution over `n` pieces in proportion to their weights.
 #[derive(Clone, Debug, PartialEq)]
@@ -11,6 +14,8 @@ pub struct Distribution1d {
     /// `cdf[i]` is the probability of the pieces before `i`; `cdf[n] = 1`.
     cdf: Vec<f64>,
     total: f64,
+    /// `guide[k]`: the last piece `i` with `cdf[i] <= k / guide.len()`.
+    guide: Vec<u32>,
 }
 
 impl Distribution1d {
@@ -36,7 +41,15 @@ impl Distribution1d {
         if let Some(last) = cdf.last_mut() {
             *last = 1.0;
         }
+        let m = weights.len();
+        let guide = (0..m)
+            .map(|k| {
+                let x = k as f64 / m as f64;
+                (cdf.partition_point(|&c| c <= x).saturating_sub(1)).min(m - 1) as u32
+            })
+            .collect();
         Distribution1d {
+            guide,
             weights: if uniform {
                 vec![1.0; weights.len()]
             } else {
@@ -69,9 +82,19 @@ impl Distribution1d {
             return None;
         }
         let u = (u as f64).clamp(0.0, 1.0);
-        // The last i with cdf[i] <= u, among the pieces of non-zero chance.
-        let mut i = self.cdf.partition_point(|&c| c <= u).saturating_sub(1);
-        i = i.min(self.len() - 1);
+        // The last i with cdf[i] <= u, among the pieces of non-zero chance: between the
+        // guide's entries for u's bucket and the next (the whole table should rounding put
+        // u outside them).
+        let n = self.len();
+        let k = ((u * n as f64) as usize).min(n - 1);
+        let lo = self.guide[k] as usize;
+        let hi = self.guide.get(k + 1).map_or(n, |&g| g as usize + 1);
+        let mut i = if self.cdf[lo] <= u && self.cdf[hi.min(n)] > u.min(1.0 - f64::EPSILON) {
+            lo + self.cdf[lo..=hi].partition_point(|&c| c <= u) - 1
+        } else {
+            self.cdf.partition_point(|&c| c <= u).saturating_sub(1)
+        };
+        i = i.min(n - 1);
         while self.weights[i] == 0.0 && i > 0 {
             i -= 1;
         }
@@ -126,6 +149,49 @@ mod tests {
     use super::super::chi2::chi2_square;
     use super::super::{Rng, Vec2};
     use super::*;
+
+    /// The guide table finds, for every `u`, the piece a search of the whole table finds:
+    /// skewed weights, runs of zeros, one piece, and `u` on every edge of the cumulative table.
+    #[test]
+    fn the_guide_finds_what_a_full_search_finds() {
+        let mut rng = Rng::new(7);
+        let tables: Vec<Vec<f32>> = vec![
+            vec![1.0],
+            vec![0.0, 0.0, 5.0, 0.0],
+            (0..97)
+                .map(|i| if i % 7 < 3 { 0.0 } else { (i * i) as f32 })
+                .collect(),
+            (0..300)
+                .map(|i| if i == 150 { 1e6 } else { 1e-3 })
+                .collect(),
+            (0..64).map(|_| rng.next_f32() * rng.next_f32()).collect(),
+        ];
+        for w in &tables {
+            let d = Distribution1d::new(w);
+            let full = |u: f32| {
+                let u = (u as f64).clamp(0.0, 1.0);
+                let mut i = d.cdf.partition_point(|&c| c <= u).saturating_sub(1);
+                i = i.min(d.len() - 1);
+                while d.weights[i] == 0.0 && i > 0 {
+                    i -= 1;
+                }
+                i
+            };
+            let mut us: Vec<f32> = (0..20_000).map(|_| rng.next_f32()).collect();
+            for &c in &d.cdf {
+                let c = c as f32;
+                us.extend([
+                    c,
+                    f32::from_bits(c.to_bits().saturating_sub(1)),
+                    c.next_up(),
+                ]);
+            }
+            us.extend([0.0, 1.0, 1.0 - f32::EPSILON]);
+            for u in us {
+                assert_eq!(d.sample_discrete(u).unwrap().0, full(u), "u = {u} of {w:?}");
+            }
+        }
+    }
 
     #[test]
     fn pieces_are_chosen_in_proportion_to_their_weights() {

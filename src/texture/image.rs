@@ -244,12 +244,20 @@ impl ImageData {
         let (w, h) = (self.width as i64, self.height as i64);
         // The four texels' columns and rows, wrapped (or clamped) once for all four.
         let next = |i: i64, n: i64| if i + 1 == n { 0 } else { i + 1 };
-        let xa = x0.rem_euclid(w);
+        // (A division only where the texel lies outside: the common case is inside.)
+        let wrap = |i: i64, n: i64| {
+            if (0..n).contains(&i) {
+                i
+            } else {
+                i.rem_euclid(n)
+            }
+        };
+        let xa = wrap(x0, w);
         let xb = next(xa, w);
         let (ya, yb) = if clamp_v {
             (y0.clamp(0, h - 1), y0.saturating_add(1).clamp(0, h - 1))
         } else {
-            let ya = y0.rem_euclid(h);
+            let ya = wrap(y0, h);
             (ya, next(ya, h))
         };
         let at = |x: i64, y: i64| (y * w + x) as usize;
