@@ -1,26 +1,31 @@
-//! Saving a render's progress to resume it later: the tiles finished so far, with what is
-//! needed to check that the resumed render is the same render (the scene file's bytes and
+//! Saving a render's progress to resume it later: the tiles finished so far (a render of
+//! all samples at once, tile by tile) or the film's sums (a progressive render, pass after
+//! pass), with what is needed to check that the resumed render is the same render (the scene file's bytes and
 //! the settings) and to continue it without repeating the command line.
 //!
-//! Tiles are independent and every pixel's samples are seeded from `(seed, x, y)`, so a
-//! resumed render gives the same bytes as one that was never stopped.
+//! Tiles are independent and every pixel's samples are seeded from `(seed, x, y)` (and a
+//! sample's index), so a resumed render gives the same bytes as one that was never stopped.
 //!
-//! The file is binary, little-endian: the line `snell checkpoint 2`, the fingerprint (u64),
+//! The file is binary, little-endian: the line `snell checkpoint 3`, the fingerprint (u64),
 //! width, height, samples per pixel (u32 each), seed (u64), the integrator (u32: 0 Whitted,
 //! 1 path), its sampler (u32: 0 independent, 1 Sobol) and clamp (u32 1 and an f32, or 0 and
-//! 0.0 for none), the scene's and the output's paths (u32 length, UTF-8), the tile count
-//! (u32), then per tile its index and pixel count (u32 each) and its pixels (three f32
-//! each). It is written to a temporary file and renamed into place, so a checkpoint is never
-//! half written. Version 1 files (an earlier snell's, the same without the integrator) are
-//! still read.
+//! 0.0 for none), the scene's and the output's paths (u32 length, UTF-8), then what is done:
+//! u32 0, the tile count (u32), then per tile its index and pixel count (u32 each) and its
+//! pixels (three f32 each); or u32 1 and the film, row by row, each pixel its sums (three
+//! f32), weight (f32), unsigned sums (three f32) and sample count (u32). It is written to a
+//! temporary file and renamed into place, so a checkpoint is never half written. Version 2
+//! files (tiles only, without the u32 0) and version 1 files (without the integrator too)
+//! are still read.
 
+use crate::film::{Film, FilmPixel};
 use crate::math::Color;
 use crate::sampler::SamplerKind;
 use crate::scene::{IntegratorKind, IntegratorSettings};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
-const MAGIC: &[u8] = b"snell checkpoint 2\n";
+const MAGIC: &[u8] = b"snell checkpoint 3\n";
+const MAGIC_2: &[u8] = b"snell checkpoint 2\n";
 const MAGIC_1: &[u8] = b"snell checkpoint 1\n";
 
 /// A render's progress.
@@ -43,8 +48,10 @@ pub struct Checkpoint {
     pub scene: PathBuf,
     /// Where the image goes.
     pub output: PathBuf,
-    /// Finished tiles by index, pixels row by row.
+    /// Finished tiles by index, pixels row by row (a render of all samples at once).
     pub tiles: BTreeMap<u32, Vec<Color>>,
+    /// The film's sums (a progressive render): every pixel with the samples it has.
+    pub film: Option<Film>,
 }
 
 /// The integrator settings a checkpoint keeps, so that `--resume` needs no flags again.
@@ -131,11 +138,24 @@ impl Checkpoint {
             u32s(&mut out, &[s.len() as u32]);
             out.extend_from_slice(s.as_bytes());
         }
-        u32s(&mut out, &[self.tiles.len() as u32]);
-        for (&i, pixels) in &self.tiles {
-            u32s(&mut out, &[i, pixels.len() as u32]);
-            for c in pixels {
-                u32s(&mut out, &c.to_array().map(f32::to_bits));
+        if let Some(film) = &self.film {
+            u32s(&mut out, &[1]);
+            for y in 0..film.height() {
+                for x in 0..film.width() {
+                    let p = film.get(x, y);
+                    u32s(&mut out, &p.sum.map(f32::to_bits));
+                    u32s(&mut out, &[p.weight.to_bits()]);
+                    u32s(&mut out, &p.unsigned.map(f32::to_bits));
+                    u32s(&mut out, &[p.samples]);
+                }
+            }
+        } else {
+            u32s(&mut out, &[0, self.tiles.len() as u32]);
+            for (&i, pixels) in &self.tiles {
+                u32s(&mut out, &[i, pixels.len() as u32]);
+                for c in pixels {
+                    u32s(&mut out, &c.to_array().map(f32::to_bits));
+                }
             }
         }
         crate::output::atomic::write_atomically(path, &out)
@@ -146,12 +166,11 @@ impl Checkpoint {
         let bytes =
             std::fs::read(path).map_err(|e| format!("cannot read {}: {e}", path.display()))?;
         let bad = |what: &str| format!("{} is not a snell checkpoint ({what})", path.display());
-        let (rest, version) = match (bytes.strip_prefix(MAGIC), bytes.strip_prefix(MAGIC_1)) {
-            (Some(rest), _) => (rest, 2),
-            (None, Some(rest)) => (rest, 1),
-            (None, None) => {
-                return Err(bad("it does not start with `snell checkpoint 2`"));
-            }
+        let (rest, version) = match [MAGIC, MAGIC_2, MAGIC_1].map(|m| bytes.strip_prefix(m)) {
+            [Some(rest), _, _] => (rest, 3),
+            [None, Some(rest), _] => (rest, 2),
+            [None, None, Some(rest)] => (rest, 1),
+            _ => return Err(bad("it does not start with `snell checkpoint 3`")),
         };
         let mut r = Reader { bytes: rest, at: 0 };
         let truncated = || bad("it is cut short");
@@ -185,8 +204,49 @@ impl Checkpoint {
         };
         let scene = PathBuf::from(r.string().ok_or_else(truncated)?);
         let output = PathBuf::from(r.string().ok_or_else(truncated)?);
-        let count = r.u32().ok_or_else(truncated)?;
+        let kind = if version == 3 {
+            r.u32().ok_or_else(truncated)?
+        } else {
+            0
+        };
         let mut tiles = BTreeMap::new();
+        if kind == 1 {
+            // The header's size, checked against the bytes there before allocating.
+            let n = width as u64 * height as u64;
+            if (r.bytes.len() - r.at) as u64 / 32 < n {
+                return Err(truncated());
+            }
+            let mut film = Film::new(width, height);
+            for y in 0..height {
+                for x in 0..width {
+                    let mut f = || r.f32().ok_or_else(truncated);
+                    let (sum, weight) = ([f()?, f()?, f()?], f()?);
+                    let unsigned = [f()?, f()?, f()?];
+                    let samples = r.u32().ok_or_else(truncated)?;
+                    *film.get_mut(x, y) = FilmPixel {
+                        sum,
+                        weight,
+                        unsigned,
+                        samples,
+                    };
+                }
+            }
+            return Ok(Checkpoint {
+                fingerprint,
+                width,
+                height,
+                spp,
+                seed,
+                integrator,
+                scene,
+                output,
+                tiles,
+                film: Some(film),
+            });
+        } else if kind != 0 {
+            return Err(bad("it keeps its progress in a way snell does not know"));
+        }
+        let count = r.u32().ok_or_else(truncated)?;
         for _ in 0..count {
             let index = r.u32().ok_or_else(truncated)?;
             let n = r.u32().ok_or_else(truncated)? as usize;
@@ -210,6 +270,7 @@ impl Checkpoint {
             scene,
             output,
             tiles,
+            film: None,
         })
     }
 }
@@ -267,7 +328,52 @@ mod tests {
             scene: PathBuf::from("/tmp/a scene.toml"),
             output: PathBuf::from("out.png"),
             tiles,
+            film: None,
         }
+    }
+
+    /// A progressive render's checkpoint: the film's sums, pixels at uneven sample counts.
+    #[test]
+    fn a_film_round_trips_exactly() {
+        let mut c = sample();
+        (c.width, c.height, c.tiles) = (37, 21, BTreeMap::new());
+        let mut film: Film = Film::new(37, 21);
+        for y in 0..21 {
+            for x in 0..37 {
+                let p = film.get_mut(x, y);
+                p.add(Color::new(x as f32 * 0.1, y as f32, 1e-7), 1.0);
+                if (x + y) % 3 == 0 {
+                    p.add(Color::new(2.0, -0.0, 5.0), -1.0);
+                }
+            }
+        }
+        c.film = Some(film);
+        let path = std::env::temp_dir().join(format!("snell-ckpt3-{}", std::process::id()));
+        c.save(&path).unwrap();
+        assert_eq!(Checkpoint::load(&path).unwrap(), c);
+        let bytes = std::fs::read(&path).unwrap();
+        std::fs::write(&path, &bytes[..bytes.len() - 4]).unwrap();
+        let e = Checkpoint::load(&path).unwrap_err();
+        assert!(e.contains("cut short"), "{e}");
+        std::fs::remove_file(&path).unwrap();
+    }
+
+    /// Version 2 files (tiles only, no progress kind) are read.
+    #[test]
+    fn version_2_files_are_read() {
+        let c = sample();
+        let path = std::env::temp_dir().join(format!("snell-ckpt2-{}", std::process::id()));
+        c.save(&path).unwrap();
+        let v3 = std::fs::read(&path).unwrap();
+        // Version 3 is version 2 with its progress kind (u32 0 for tiles) before the tiles.
+        let at = v3.len() - 4 - c.tiles.values().map(|t| 8 + 12 * t.len()).sum::<usize>() - 4;
+        assert_eq!(v3[at..at + 4], [0, 0, 0, 0]);
+        let mut v2 = MAGIC_2.to_vec();
+        v2.extend_from_slice(&v3[MAGIC.len()..at]);
+        v2.extend_from_slice(&v3[at + 4..]);
+        std::fs::write(&path, &v2).unwrap();
+        assert_eq!(Checkpoint::load(&path).unwrap(), c);
+        std::fs::remove_file(&path).unwrap();
     }
 
     #[test]

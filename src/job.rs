@@ -246,6 +246,7 @@ mod tests {
             scene: path.clone(),
             output: "s.png".into(),
             tiles: Default::default(),
+            film: None,
         };
         assert!(RenderJob::prepare(&path, &Overrides::default(), &limits, Some(&c)).is_ok());
         c.fingerprint ^= 1;

@@ -103,6 +103,12 @@ impl<P> Film<P> {
         &self.pixels[self.grid.index(x, y)]
     }
 
+    /// The pixel at `(x, y)`, to change.
+    pub fn get_mut(&mut self, x: u32, y: u32) -> &mut P {
+        let i = self.grid.index(x, y);
+        &mut self.pixels[i]
+    }
+
     /// Every pixel, in no order a caller may rely on (for counts and checks).
     pub fn pixels(&self) -> &[P] {
         &self.pixels

@@ -14,10 +14,11 @@ use std::sync::atomic::AtomicBool;
 pub mod estimate;
 pub mod pass;
 mod pixel;
+pub mod progressive;
 mod tiles;
 
 pub use crate::film::TILE;
-pub use pass::{PassError, PassStats, render_pass};
+pub use pass::{PassError, PassStats, render_pass, render_pass_to};
 pub use pixel::{add_pixel, add_samples, add_stratified, for_each_sample, start_sample};
 pub(crate) use tiles::for_each_tile;
 
@@ -85,7 +86,8 @@ impl BadSamples {
     /// Examples kept.
     pub const EXAMPLES: usize = 8;
 
-    fn add(&mut self, other: BadSamples) {
+    /// Adds `other`'s count and as many of its examples as there is room for.
+    pub fn add(&mut self, other: BadSamples) {
         self.count += other.count;
         for e in other.examples {
             if self.examples.len() < Self::EXAMPLES {

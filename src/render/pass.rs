@@ -5,7 +5,7 @@
 
 use super::tiles::for_each_tile;
 use super::{BadSamples, RenderError, RenderOptions, TilesDone, add_pixel};
-use crate::film::Film;
+use crate::film::{Film, FilmPixel};
 use crate::integrator::{Integrator, RayStats};
 use crate::scene::Scene;
 use std::ops::Range;
@@ -48,6 +48,43 @@ pub fn render_pass(
     samples: Range<u32>,
     options: &RenderOptions,
 ) -> Result<PassStats, PassError> {
+    if !integrator.uses_sampler() && samples != (0..scene.settings.spp) {
+        return Err(PassError::NotProgressive(scene.settings.spp));
+    }
+    pass(scene, integrator, film, |_| samples.clone(), options)
+}
+
+/// Brings every pixel of `film` up to `target` samples: each takes the samples from the
+/// number it has to `target` (none if it has as many), so a film left uneven by a
+/// cancelled pass (or read back from a checkpoint) comes out as a render of `target`
+/// samples would, to the bit. Only for integrators that take a sampler.
+pub fn render_pass_to(
+    scene: &Scene,
+    integrator: &dyn Integrator,
+    film: &mut Film,
+    target: u32,
+    options: &RenderOptions,
+) -> Result<PassStats, PassError> {
+    if !integrator.uses_sampler() {
+        return Err(PassError::NotProgressive(scene.settings.spp));
+    }
+    pass(
+        scene,
+        integrator,
+        film,
+        |p| p.samples..target.max(p.samples),
+        options,
+    )
+}
+
+/// Adds to each pixel the samples `range` gives for it.
+fn pass(
+    scene: &Scene,
+    integrator: &dyn Integrator,
+    film: &mut Film,
+    range: impl Fn(&FilmPixel) -> Range<u32> + Sync,
+    options: &RenderOptions,
+) -> Result<PassStats, PassError> {
     let s = &scene.settings;
     if (film.width(), film.height()) != (s.width, s.height) {
         return Err(PassError::Size(
@@ -57,16 +94,14 @@ pub fn render_pass(
             s.height,
         ));
     }
-    if !integrator.uses_sampler() && samples != (0..s.spp) {
-        return Err(PassError::NotProgressive(s.spp));
-    }
     let grid = film.grid();
     let tiles = for_each_tile(
         film,
         options,
         |_| false,
         |x, y, pixel, (rays, bad): &mut (RayStats, BadSamples)| {
-            add_pixel(scene, integrator, x, y, samples.clone(), pixel, rays, bad);
+            let samples = range(pixel);
+            add_pixel(scene, integrator, x, y, samples, pixel, rays, bad);
         },
         |_, _| {},
     )?;
@@ -140,6 +175,35 @@ mod tests {
         let mut short = Film::new(20, 14);
         render_pass(&scene, &Path, &mut short, 0..5, &options(2)).unwrap();
         assert_ne!(bits(&short.image().pixels), bits(&whole.image.pixels));
+    }
+
+    /// A pass cancelled part way leaves tiles at two sample counts; bringing the film up to
+    /// 12 from there gives the render of 12, to the bit.
+    #[test]
+    fn an_uneven_film_is_brought_up_to_one_render() {
+        let whole = render(&scene(12), &Path, Some(2), &|_| {}).unwrap();
+        let scene = scene(12);
+        let mut film = Film::new(20, 14);
+        render_pass_to(&scene, &Path, &mut film, 3, &options(2)).unwrap();
+        // Cancelled after its first tile (one thread takes them in order).
+        let stop = std::sync::atomic::AtomicBool::new(false);
+        let progress = |_| stop.store(true, std::sync::atomic::Ordering::SeqCst);
+        let cancelling = RenderOptions {
+            threads: Some(1),
+            progress: &progress,
+            cancel: Some(&stop),
+        };
+        let stats = render_pass_to(&scene, &Path, &mut film, 7, &cancelling).unwrap();
+        assert_eq!(stats.tiles_done, 1);
+        let counts: std::collections::BTreeSet<u32> =
+            film.pixels().iter().map(|p| p.samples).collect();
+        assert_eq!(counts, [3, 7].into());
+        render_pass_to(&scene, &Path, &mut film, 12, &options(1)).unwrap();
+        assert_eq!(bits(&film.image().pixels), bits(&whole.image.pixels));
+        assert!(matches!(
+            render_pass_to(&scene, &Whitted, &mut film, 12, &options(1)),
+            Err(PassError::NotProgressive(12))
+        ));
     }
 
     /// Whitted goes through the same loop in one pass of all its samples: the image

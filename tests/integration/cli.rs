@@ -622,3 +622,81 @@ fn exposure_and_tone_curve_shape_the_png_only() {
         );
     }
 }
+
+/// `--time` stops the path tracer's passes once the time is spent (here, short of 65536
+/// samples per pixel): the picture is written whole, as a render of the samples it reached
+/// (the same bytes as `--spp` of that many), and the message says so. A bad time is told
+/// what a time is; Whitted, which takes all its samples at once, is warned.
+#[test]
+fn time_stops_the_passes_and_writes_the_picture() {
+    let dir = scratch("time");
+    let scene = write_scene(
+        &dir,
+        "s.toml",
+        "[image]\nwidth = 32\nheight = 24\n[integrator]\ntype = \"path\"\n\
+         [camera]\nposition = [0, 1, 4]\nlook_at = [0, 0, 0]\n\
+         [environment]\ntype = \"constant\"\ncolor = 0.8\n\
+         [materials.m]\ncolor = [0.9, 0.6, 0.3]\n\
+         [[objects]]\ntype = \"sphere\"\nradius = 1\nmaterial = \"m\"\n",
+    );
+    let o = expect(
+        &[
+            "render", &scene, "-o", "t.exr", "--spp", "65536", "--time", "0.2s",
+        ],
+        &dir,
+        0,
+    );
+    let out = stdout(&o);
+    assert!(out.contains("(--time stopped it short of 65536)"), "{out}");
+    let spp: u32 = out
+        .split(" spp")
+        .next()
+        .and_then(|s| s.rsplit(", ").next())
+        .and_then(|s| s.parse().ok())
+        .unwrap_or_else(|| panic!("no spp in {out}"));
+    assert!((1..65536).contains(&spp), "{out}");
+    expect(
+        &[
+            "render",
+            &scene,
+            "-o",
+            "n.exr",
+            "--spp",
+            &spp.to_string(),
+            "-q",
+        ],
+        &dir,
+        0,
+    );
+    assert_eq!(
+        std::fs::read(dir.join("t.exr")).unwrap(),
+        std::fs::read(dir.join("n.exr")).unwrap()
+    );
+    for bad in ["abc", "-3s", "0", "5 parsecs", "1e30h"] {
+        let o = expect(&["render", &scene, "--time", bad], &dir, 2);
+        assert!(
+            stderr(&o).contains("is not a time"),
+            "{bad}: {}",
+            stderr(&o)
+        );
+    }
+    let o = expect(
+        &[
+            "render",
+            &scene,
+            "-o",
+            "w.png",
+            "--integrator",
+            "whitted",
+            "--time",
+            "1m",
+        ],
+        &dir,
+        0,
+    );
+    assert!(
+        stderr(&o).contains("--time is for the path tracer"),
+        "{}",
+        stderr(&o)
+    );
+}

@@ -291,6 +291,7 @@ fn a_checkpoint_of_another_scene_or_size_is_refused() {
         scene: scene.into(),
         output: dir.join("o.png"),
         tiles: Default::default(),
+        film: None,
     };
     c.save(&dir.join("c.ckpt")).unwrap();
     let o = snell()

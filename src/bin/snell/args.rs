@@ -116,6 +116,28 @@ fn parse_clamp(s: &str) -> Result<f32, String> {
     }
 }
 
+/// A time: a number with `ms`, `s`, `m` or `h` after it, or seconds without.
+pub(crate) fn parse_duration(s: &str) -> Result<std::time::Duration, String> {
+    let t = s.trim();
+    let split = t.find(|c: char| c.is_ascii_alphabetic()).unwrap_or(t.len());
+    let (number, unit) = t.split_at(split);
+    let scale = match unit.trim() {
+        "" | "s" => 1.0,
+        "ms" => 1e-3,
+        "m" | "min" => 60.0,
+        "h" => 3600.0,
+        _ => f64::NAN,
+    };
+    match number.trim().parse::<f64>() {
+        Ok(v) if v > 0.0 && (v * scale).is_finite() && v * scale < 1e9 => {
+            Ok(std::time::Duration::from_secs_f64(v * scale))
+        }
+        _ => Err(format!(
+            "`{s}` is not a time: give a positive number of seconds, or one with ms, s, m or h after it (30s, 2m, 1h)"
+        )),
+    }
+}
+
 #[derive(Args, Debug)]
 pub(crate) struct RenderArgs {
     /// The scene file (.toml or .json); with --resume, the checkpoint names it.
@@ -141,6 +163,11 @@ pub(crate) struct RenderArgs {
     /// `[image] tonemap`).
     #[arg(long, value_parser = parse_tonemap, value_name = "CURVE")]
     pub(crate) tonemap: Option<snell::output::tone::ToneCurve>,
+    /// The path tracer renders in passes (1, 2, 4 ... samples per pixel); stop after the
+    /// pass that spends this time, or at the scene's samples if sooner: 30s, 2m, 1h, 1.5
+    /// (seconds). With --spp 65536 the time alone decides.
+    #[arg(long, allow_hyphen_values = true, value_parser = parse_duration, value_name = "TIME")]
+    pub(crate) time: Option<std::time::Duration>,
     /// Print nothing but errors.
     #[arg(short, long)]
     pub(crate) quiet: bool,

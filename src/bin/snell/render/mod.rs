@@ -9,6 +9,8 @@ use snell::integrator::aov::{Aov, render_aovs};
 use snell::job::RenderJob;
 use snell::output::{ExrLayer, OutputError, OutputFormat, PendingOutput, encode_exr_layers};
 use snell::render::{RenderOptions, TileStore};
+
+mod passes;
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -130,7 +132,7 @@ pub(crate) fn render(args: RenderArgs) -> ExitCode {
         let bar = ProgressBar::with_draw_target(Some(pixels), ProgressDrawTarget::stderr());
         bar.set_style(
             ProgressStyle::with_template(
-                "{spinner} rendering [{elapsed_precise}] {wide_bar} {percent:>3}%  ETA {eta}",
+                "{spinner} rendering [{elapsed_precise}] {wide_bar} {percent:>3}%  {msg}ETA {eta}",
             )
             .expect("the template is valid"),
         );
@@ -141,52 +143,40 @@ pub(crate) fn render(args: RenderArgs) -> ExitCode {
     let start = Instant::now();
     let threads = args.threads.map(usize::from);
     handle_interrupts();
-    let store = TileStore::new(resumed.map(|c| c.tiles).unwrap_or_default());
-    let snapshot = |tiles| Checkpoint {
+    let integrator = snell::integrator::chosen(scene.settings.integrator.kind);
+    let saver = Saver {
         fingerprint,
-        width: scene.settings.width,
-        height: scene.settings.height,
-        spp: scene.settings.spp,
-        seed: scene.settings.seed,
-        integrator: Some(CheckpointIntegrator::of(&scene.settings.integrator)),
-        scene: std::fs::canonicalize(&scene_path).unwrap_or_else(|_| scene_path.clone()),
-        output: std::path::absolute(&out_path).unwrap_or_else(|_| out_path.clone()),
-        tiles,
+        scene: &scene,
+        scene_path: &scene_path,
+        out_path: &out_path,
     };
-    let finished = AtomicBool::new(false);
-    let rendered = std::thread::scope(|scope| {
-        // Checkpoints are written from their own thread, every few seconds.
-        if let Some(path) = &checkpoint_path {
-            let (store, finished, snapshot) = (&store, &finished, &snapshot);
-            let every = std::time::Duration::from_secs_f64(args.checkpoint_every);
-            scope.spawn(move || {
-                let mut last = Instant::now();
-                while !finished.load(Ordering::SeqCst) {
-                    std::thread::sleep(std::time::Duration::from_millis(50));
-                    if last.elapsed() >= every {
-                        if let Err(e) = snapshot(store.snapshot()).save(path) {
-                            eprintln!(
-                                "warning: cannot save the checkpoint {}: {e}",
-                                path.display()
-                            );
-                        }
-                        last = Instant::now();
-                    }
-                }
-            });
+    let run = Run {
+        scene: &scene,
+        integrator,
+        threads,
+        bar: &bar,
+        checkpoint: checkpoint_path.as_deref(),
+        every: std::time::Duration::from_secs_f64(args.checkpoint_every),
+        saver: &saver,
+    };
+    // The path tracer renders in passes, unless it resumes a checkpoint of tiles (an
+    // earlier snell's).
+    let by_passes = integrator.uses_sampler()
+        && resumed
+            .as_ref()
+            .is_none_or(|c| c.film.is_some() || c.tiles.is_empty());
+    let outcome = if by_passes {
+        passes::render_passes(&run, resumed.and_then(|c| c.film), args.time)
+    } else {
+        if args.time.is_some() && !args.quiet {
+            eprintln!(
+                "warning: --time is for the path tracer's passes; this render takes all its samples at once"
+            );
         }
-        let options = RenderOptions {
-            threads,
-            progress: &|n| bar.set_position(n),
-            cancel: Some(&STOP),
-        };
-        let integrator = snell::integrator::chosen(scene.settings.integrator.kind);
-        let r = snell::render::render_with(&scene, integrator, &options, Some(&store));
-        finished.store(true, Ordering::SeqCst);
-        r
-    });
-    let rendered = match rendered {
-        Ok(r) => r,
+        render_tiles(&run, resumed.map(|c| c.tiles).unwrap_or_default())
+    };
+    let outcome = match outcome {
+        Ok(o) => o,
         Err(e) => {
             bar.abandon();
             eprintln!("error: {e}");
@@ -195,7 +185,7 @@ pub(crate) fn render(args: RenderArgs) -> ExitCode {
     };
     bar.finish_and_clear();
     let elapsed = start.elapsed().as_secs_f64();
-    if !rendered.complete() {
+    if !outcome.complete {
         // An unfinished picture never replaces a finished one: it goes beside it.
         pending.make_partial();
         for (_, out) in &mut aov_outputs {
@@ -204,29 +194,22 @@ pub(crate) fn render(args: RenderArgs) -> ExitCode {
     }
     let written = if aovs.is_empty() {
         pending
-            .commit_toned(&rendered.image, &scene.settings.tone)
+            .commit_toned(&outcome.image, &scene.settings.tone)
             .map_err(|e| e.to_string())
     } else {
-        write_aovs(
-            &scene,
-            threads,
-            &rendered.image,
-            pending,
-            &aovs,
-            aov_outputs,
-        )
+        write_aovs(&scene, threads, &outcome.image, pending, &aovs, aov_outputs)
     };
     if let Err(e) = written {
         eprintln!("error: {e}");
         return ExitCode::from(1);
     }
-    if !rendered.complete() {
-        let resume = match &checkpoint_path {
-            Some(path) => match snapshot(store.snapshot()).save(path) {
+    if !outcome.complete {
+        let resume = match (&checkpoint_path, &outcome.checkpoint) {
+            (Some(path), Some(c)) => match c.save(path) {
                 Ok(()) => format!("; continue with: snell render --resume {}", path.display()),
                 Err(e) => format!("; the checkpoint could not be saved: {e}"),
             },
-            None => String::new(),
+            _ => String::new(),
         };
         let old = if out_path.exists() {
             "was left as it was"
@@ -234,10 +217,9 @@ pub(crate) fn render(args: RenderArgs) -> ExitCode {
             "was not written"
         };
         eprintln!(
-            "interrupted: wrote {} with {} of {} tiles rendered (the rest are black); {} {old}{resume}",
+            "interrupted: wrote {} with {}; {} {old}{resume}",
             snell::output::partial_path(&out_path).display(),
-            rendered.tiles_done,
-            rendered.tiles_total,
+            outcome.done,
             out_path.display(),
         );
         return ExitCode::from(EXIT_INTERRUPTED);
@@ -252,21 +234,27 @@ pub(crate) fn render(args: RenderArgs) -> ExitCode {
         let _ = std::fs::remove_file(path);
     }
     if !args.quiet {
-        let samples = pixels * spp as u64;
+        let samples = pixels * outcome.spp as u64;
         // A resumed render's rate counts only the samples rendered in this run.
-        let this_run = rendered.pixels_rendered * spp as u64;
-        let resumed_part = if this_run < samples {
-            format!(" ({this_run} of them in this run)")
+        let resumed_part = if outcome.samples < samples {
+            format!(" ({} of them in this run)", outcome.samples)
         } else {
             String::new()
         };
         outln!(
-            "wrote {}: {w} x {h}, {spp} spp, {samples} samples{resumed_part} in {elapsed:.2} s ({:.2} M samples/s, {} threads)",
+            "wrote {}: {w} x {h}, {} spp{}, {samples} samples{resumed_part} in {elapsed:.2} s ({:.2} M samples/s, {} threads)",
             out_path.display(),
-            this_run as f64 / elapsed.max(1e-9) / 1e6,
+            outcome.spp,
+            if outcome.spp < spp {
+                format!(" (--time stopped it short of {spp})")
+            } else {
+                String::new()
+            },
+            outcome.samples as f64 / elapsed.max(1e-9) / 1e6,
             threads.unwrap_or_else(rayon::current_num_threads),
         );
     }
+    let rendered = &outcome;
     let bad = &rendered.bad_samples;
     if bad.count > 0 && !args.quiet {
         let places: Vec<String> = bad
@@ -300,6 +288,123 @@ pub(crate) fn render(args: RenderArgs) -> ExitCode {
         print_stats(&scene.stats, load_time, &rendered.rays, elapsed);
     }
     ExitCode::SUCCESS
+}
+
+/// What a render came to, whichever way it went (tiles or passes).
+pub(crate) struct Outcome {
+    pub(crate) image: snell::film::Image,
+    pub(crate) rays: snell::integrator::RayStats,
+    pub(crate) bad_samples: snell::render::BadSamples,
+    /// Whether the picture is whole: every tile, or every pass its samples or time allow.
+    pub(crate) complete: bool,
+    /// Samples per pixel in the picture (the fewest any pixel has).
+    pub(crate) spp: u32,
+    /// Samples traced in this run (a resumed render's earlier ones not counted).
+    pub(crate) samples: u64,
+    /// What an interrupted render had done, in words.
+    pub(crate) done: String,
+    /// Where it stopped, to save when interrupted.
+    pub(crate) checkpoint: Option<Checkpoint>,
+}
+
+/// What a render is, for its checkpoints.
+pub(crate) struct Saver<'a> {
+    fingerprint: u64,
+    scene: &'a snell::Scene,
+    scene_path: &'a Path,
+    out_path: &'a Path,
+}
+
+impl Saver<'_> {
+    /// The checkpoint of a render that has done `tiles` (whole) or `film` (passes).
+    pub(crate) fn checkpoint(
+        &self,
+        tiles: std::collections::BTreeMap<u32, Vec<snell::math::Color>>,
+        film: Option<snell::film::Film>,
+    ) -> Checkpoint {
+        let s = &self.scene.settings;
+        Checkpoint {
+            fingerprint: self.fingerprint,
+            width: s.width,
+            height: s.height,
+            spp: s.spp,
+            seed: s.seed,
+            integrator: Some(CheckpointIntegrator::of(&s.integrator)),
+            scene: std::fs::canonicalize(self.scene_path)
+                .unwrap_or_else(|_| self.scene_path.to_path_buf()),
+            output: std::path::absolute(self.out_path)
+                .unwrap_or_else(|_| self.out_path.to_path_buf()),
+            tiles,
+            film,
+        }
+    }
+}
+
+/// A render's parts, as both ways of rendering take them.
+pub(crate) struct Run<'a> {
+    pub(crate) scene: &'a snell::Scene,
+    pub(crate) integrator: &'a dyn snell::integrator::Integrator,
+    pub(crate) threads: Option<usize>,
+    pub(crate) bar: &'a ProgressBar,
+    /// Where checkpoints go, and how often.
+    pub(crate) checkpoint: Option<&'a Path>,
+    pub(crate) every: std::time::Duration,
+    pub(crate) saver: &'a Saver<'a>,
+}
+
+/// Every sample of each pixel at once, tile by tile (Whitted, whose strata are fixed by the
+/// sample count, and a resumed checkpoint of tiles), from `earlier` tiles on, with
+/// checkpoints saved from a thread of their own.
+fn render_tiles(
+    run: &Run,
+    earlier: std::collections::BTreeMap<u32, Vec<snell::math::Color>>,
+) -> Result<Outcome, String> {
+    let store = TileStore::new(earlier);
+    let finished = AtomicBool::new(false);
+    let rendered = std::thread::scope(|scope| {
+        if let Some(path) = run.checkpoint {
+            let (store, finished) = (&store, &finished);
+            let (every, saver) = (run.every, run.saver);
+            scope.spawn(move || {
+                let mut last = Instant::now();
+                while !finished.load(Ordering::SeqCst) {
+                    std::thread::sleep(std::time::Duration::from_millis(50));
+                    if last.elapsed() >= every {
+                        if let Err(e) = saver.checkpoint(store.snapshot(), None).save(path) {
+                            eprintln!(
+                                "warning: cannot save the checkpoint {}: {e}",
+                                path.display()
+                            );
+                        }
+                        last = Instant::now();
+                    }
+                }
+            });
+        }
+        let options = RenderOptions {
+            threads: run.threads,
+            progress: &|n| run.bar.set_position(n),
+            cancel: Some(&STOP),
+        };
+        let r = snell::render::render_with(run.scene, run.integrator, &options, Some(&store));
+        finished.store(true, Ordering::SeqCst);
+        r
+    })
+    .map_err(|e| e.to_string())?;
+    let spp = run.scene.settings.spp;
+    Ok(Outcome {
+        complete: rendered.complete(),
+        spp,
+        samples: rendered.pixels_rendered * spp as u64,
+        done: format!(
+            "{} of {} tiles rendered (the rest are black)",
+            rendered.tiles_done, rendered.tiles_total
+        ),
+        checkpoint: Some(run.saver.checkpoint(store.snapshot(), None)),
+        image: rendered.image,
+        rays: rendered.rays,
+        bad_samples: rendered.bad_samples,
+    })
 }
 
 /// Renders estimated at over an hour are told so before they start, with what would

@@ -1,0 +1,95 @@
+//! The path tracer's render in passes over a film of sums (1, 2, 4 ... samples per pixel),
+//! with `--time`, a progress bar in samples, checkpoints between passes, and Ctrl-C writing
+//! the picture of the samples taken so far.
+
+use super::{Outcome, Run, STOP};
+use snell::film::Film;
+use snell::render::RenderOptions;
+use snell::render::progressive::{Ended, PassEvent, Until, film_samples, render_progressive};
+use std::sync::atomic::{AtomicU64, Ordering};
+use std::time::{Duration, Instant};
+
+/// Renders `run`'s scene in passes, from `earlier` (a resumed film) if given, until its
+/// samples or `time` are spent or Ctrl-C stops it.
+pub(crate) fn render_passes(
+    run: &Run,
+    earlier: Option<Film>,
+    time: Option<Duration>,
+) -> Result<Outcome, String> {
+    let s = &run.scene.settings;
+    let pixels = s.width as u64 * s.height as u64;
+    let mut film = earlier.unwrap_or_else(|| Film::new(s.width, s.height));
+    run.bar.set_length(pixels * s.spp as u64);
+    // The pass under way: the bar's position at its start, and its samples per pixel.
+    let (base, step) = (AtomicU64::new(0), AtomicU64::new(0));
+    let progress = |n: u64| {
+        let (b, s) = (base.load(Ordering::Relaxed), step.load(Ordering::Relaxed));
+        run.bar.set_position(b + n * s);
+    };
+    let options = RenderOptions {
+        threads: run.threads,
+        progress: &progress,
+        cancel: Some(&STOP),
+    };
+    let mut last_save = Instant::now();
+    let mut save_error = None;
+    let until = Until { spp: s.spp, time };
+    let done = render_progressive(
+        run.scene,
+        run.integrator,
+        &mut film,
+        until,
+        &options,
+        &mut |event, film| match event {
+            PassEvent::Start { from, to } => {
+                base.store(pixels * from as u64, Ordering::Relaxed);
+                step.store((to - from) as u64, Ordering::Relaxed);
+                run.bar.set_message(format!("{from} → {to} spp  "));
+            }
+            PassEvent::Done { .. } => {
+                if let Some(path) = run.checkpoint
+                    && last_save.elapsed() >= run.every
+                {
+                    if let Err(e) = run
+                        .saver
+                        .checkpoint(Default::default(), Some(film.clone()))
+                        .save(path)
+                    {
+                        save_error.get_or_insert(e.to_string());
+                    }
+                    last_save = Instant::now();
+                }
+            }
+        },
+    )
+    .map_err(|e| e.to_string())?;
+    if let Some(e) = save_error
+        && let Some(path) = run.checkpoint
+    {
+        eprintln!(
+            "warning: cannot save the checkpoint {}: {e}",
+            path.display()
+        );
+    }
+    let spp = film_samples(&film);
+    let most = film.pixels().iter().map(|p| p.samples).max().unwrap_or(0);
+    let ended = done.ended.unwrap_or(Ended::Cancelled);
+    Ok(Outcome {
+        image: film.image(),
+        rays: done.rays,
+        bad_samples: done.bad_samples,
+        complete: ended != Ended::Cancelled,
+        spp,
+        samples: done.samples_added,
+        done: if most > spp {
+            format!(
+                "{spp} samples per pixel ({most} in some tiles) of {}",
+                s.spp
+            )
+        } else {
+            format!("{spp} samples per pixel of {}", s.spp)
+        },
+        checkpoint: (ended == Ended::Cancelled)
+            .then(|| run.saver.checkpoint(Default::default(), Some(film))),
+    })
+}
