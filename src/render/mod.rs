@@ -19,7 +19,10 @@ mod tiles;
 
 pub use crate::film::TILE;
 pub use pass::{PassError, PassStats, render_pass, render_pass_to};
-pub use pixel::{add_pixel, add_samples, add_stratified, for_each_sample, start_sample};
+pub use pixel::{
+    add_pixel, add_samples, add_stratified, camera_ray, for_each_sample, start_sample,
+    whitted_lens_sample,
+};
 pub(crate) use tiles::for_each_tile;
 
 /// Why a render could not run.
@@ -186,13 +189,24 @@ pub fn render_with(
     for (&i, tile) in &earlier {
         film.tile_mut(i).copy_from_slice(tile);
     }
+    let camera = scene.camera.raster(s.width, s.height);
     let tiles = for_each_tile(
         &mut film,
         options,
         |i| earlier.contains_key(&i),
         |x, y, color, (rays, bad): &mut (RayStats, BadSamples)| {
             let mut pixel = FilmPixel::default();
-            add_pixel(scene, integrator, x, y, 0..s.spp, &mut pixel, rays, bad);
+            add_pixel(
+                scene,
+                integrator,
+                &camera,
+                x,
+                y,
+                0..s.spp,
+                &mut pixel,
+                rays,
+                bad,
+            );
             *color = pixel.value();
         },
         |i, tile| {

@@ -95,13 +95,14 @@ fn pass(
         ));
     }
     let grid = film.grid();
+    let camera = scene.camera.raster(s.width, s.height);
     let tiles = for_each_tile(
         film,
         options,
         |_| false,
         |x, y, pixel, (rays, bad): &mut (RayStats, BadSamples)| {
             let samples = range(pixel);
-            add_pixel(scene, integrator, x, y, samples, pixel, rays, bad);
+            add_pixel(scene, integrator, &camera, x, y, samples, pixel, rays, bad);
         },
         |_, _| {},
     )?;

@@ -4,14 +4,16 @@
 //! ([`add_samples`]), so that passes can add more later.
 
 use super::{BadSample, BadSamples};
+use crate::camera::RasterCamera;
 use crate::film::FilmPixel;
 use crate::integrator::{Integrator, RayStats};
-use crate::math::{Color, Ray, Rng, Vec3A, hash_seed};
+use crate::math::{Color, Ray, Rng, Vec2, Vec3A, hash_seed};
 use crate::sampler::Sampler;
 use crate::scene::{RenderSettings, Scene};
 use std::ops::Range;
 
-/// Adds samples `samples` of pixel `(x, y)` to `pixel`: by index for an integrator that
+/// Adds samples `samples` of pixel `(x, y)` to `pixel`, its rays from `camera` (the
+/// scene's, set up for the image's size once per render): by index for an integrator that
 /// takes a sampler, or all of Whitted's strata (whose grid the sample count fixes, so they
 /// are added all at once whatever `samples` says).
 #[allow(clippy::too_many_arguments)]
@@ -19,6 +21,7 @@ use std::ops::Range;
 pub fn add_pixel(
     scene: &Scene,
     integrator: &dyn Integrator,
+    camera: &RasterCamera,
     x: u32,
     y: u32,
     samples: Range<u32>,
@@ -27,9 +30,9 @@ pub fn add_pixel(
     bad: &mut BadSamples,
 ) {
     if integrator.uses_sampler() {
-        add_samples(scene, integrator, x, y, samples, pixel, rays, bad);
+        add_samples(scene, integrator, camera, x, y, samples, pixel, rays, bad);
     } else {
-        add_stratified(scene, integrator, x, y, pixel, rays, bad);
+        add_stratified(scene, integrator, camera, x, y, pixel, rays, bad);
     }
 }
 
@@ -72,14 +75,38 @@ pub fn for_each_sample(s: &RenderSettings, x: u32, y: u32, mut f: impl FnMut(f32
     }
 }
 
+/// The point of the lens (in the unit square) Whitted's sample `i` of pixel `(x, y)` passes
+/// through, for a camera with a lens: from a generator of its own, so that a pinhole's
+/// samples are the same with or without this.
+#[inline]
+pub fn whitted_lens_sample(s: &RenderSettings, x: u32, y: u32, i: u32) -> Vec2 {
+    const LENS: u64 = 0x6c65_6e73;
+    let mut rng = Rng::new(hash_seed(&[s.seed, x as u64, y as u64, i as u64, LENS]));
+    Vec2::new(rng.next_f32(), rng.next_f32())
+}
+
+/// The camera ray of a sampled film position: through the lens at the sampler's next two
+/// numbers when the camera has one (a pinhole takes none, so its samples' numbers are as
+/// they were).
+#[inline]
+pub fn camera_ray(camera: &RasterCamera, sampler: &mut Sampler, px: f32, py: f32) -> Ray {
+    if camera.has_lens() {
+        camera.ray_lens(px, py, sampler.next_2d())
+    } else {
+        camera.ray(px, py)
+    }
+}
+
 /// Camera rays made at once by [`add_stratified`] before they are traced.
 const CAMERA_BATCH: usize = 16;
 
 /// Adds every sample of one pixel (see [`for_each_sample`]) to `pixel`, with the sign of
 /// its filter weight.
+#[allow(clippy::too_many_arguments)]
 pub fn add_stratified(
     scene: &Scene,
     integrator: &dyn Integrator,
+    camera: &RasterCamera,
     x: u32,
     y: u32,
     pixel: &mut FilmPixel,
@@ -88,7 +115,6 @@ pub fn add_stratified(
 ) {
     let s = &scene.settings;
     let (mut sum, mut weight, mut unsigned) = (Color::ZERO, 0.0f32, Color::ZERO);
-    let camera = scene.camera.raster(s.width, s.height);
     let mut colors = [Color::ZERO; CAMERA_BATCH];
     let mut trace = |batch: &[Ray], signs: &[f32]| {
         let colors = &mut colors[..batch.len()];
@@ -109,19 +135,27 @@ pub fn add_stratified(
     // sample's whole tree of rays, and handed to the integrator together, which finds their
     // first hits as packets. The order of the samples is unchanged.
     let mut batch = [Ray::new(Vec3A::ZERO, Vec3A::Z); CAMERA_BATCH];
-    let mut film = [(0.0f32, 0.0f32); CAMERA_BATCH];
+    let mut film = [(0.0f32, 0.0f32, 0u32); CAMERA_BATCH];
     let mut signs = [0.0f32; CAMERA_BATCH];
     let mut len = 0;
     // A batch's film positions first, then its rays in a loop of their own: making each ray
     // as its sample was drawn interleaved the filter's table lookups with the ray stores
     // (3.8 % of the seed scene's time, with the changes to `for_each_sample`).
-    let make = |film: &[(f32, f32)], batch: &mut [Ray]| {
-        for (r, &(px, py)) in batch.iter_mut().zip(film) {
-            *r = camera.ray(px, py);
+    let make = |film: &[(f32, f32, u32)], batch: &mut [Ray]| {
+        if camera.has_lens() {
+            for (r, &(px, py, i)) in batch.iter_mut().zip(film) {
+                *r = camera.ray_lens(px, py, whitted_lens_sample(s, x, y, i));
+            }
+        } else {
+            for (r, &(px, py, _)) in batch.iter_mut().zip(film) {
+                *r = camera.ray(px, py);
+            }
         }
     };
+    let mut index = 0;
     for_each_sample(s, x, y, |px, py, sign| {
-        film[len] = (px, py);
+        film[len] = (px, py, index);
+        index += 1;
         signs[len] = sign;
         len += 1;
         if len == CAMERA_BATCH {
@@ -185,6 +219,7 @@ pub fn start_sample(
 pub fn add_samples(
     scene: &Scene,
     integrator: &dyn Integrator,
+    camera: &RasterCamera,
     x: u32,
     y: u32,
     samples: Range<u32>,
@@ -193,13 +228,12 @@ pub fn add_samples(
     bad: &mut BadSamples,
 ) {
     let s = &scene.settings;
-    let camera = scene.camera.raster(s.width, s.height);
     let mut sampler = Sampler::new(s.integrator.sampler, s.seed);
     let signed = s.filter.has_negative_lobes();
     for index in samples {
         let (px, py, filter_sign) = start_sample(s, &mut sampler, x, y, index);
         let sign = if signed { filter_sign } else { 1.0 };
-        let ray = camera.ray(px, py);
+        let ray = camera_ray(camera, &mut sampler, px, py);
         let c = integrator.radiance_sampled(scene, &ray, &mut sampler, rays);
         pixel.add(checked(scene, c, &ray, x, y, bad), sign);
     }
@@ -238,6 +272,7 @@ mod tests {
             add_stratified(
                 &scene,
                 &Whitted,
+                &scene.camera.raster(8, 8),
                 x,
                 y,
                 &mut pixel,

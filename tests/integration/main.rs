@@ -3,6 +3,7 @@
 
 mod aov;
 mod bad;
+mod camera;
 mod cli;
 mod docs;
 mod environment;

@@ -326,10 +326,14 @@ sampler = "independent"
 rr_depth = 3
 clamp = 10
 [camera]
+type = "orthographic"
+height = 5
 position = [0, 2, 6]
 look_at = [0, 0, 0]
 up = [0, 1, 0]
 fov = 40
+aperture = 0.1
+focus_distance = 6
 [world]
 ambient = [0.1, 0.1, 0.2]
 [fog]
@@ -545,6 +549,7 @@ fn the_every_key_scene_has_every_key_and_type_of_the_schema() {
         "sobol",
         "phong",
         "constant",
+        "perspective",
         "clamp",
         "reinhard",
     ];

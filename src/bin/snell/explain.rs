@@ -73,7 +73,10 @@ pub(crate) fn explain(args: ExplainArgs) -> ExitCode {
     if path {
         return explain_path(&args, &scene, args.sample.unwrap_or(0));
     }
-    let Some((color, rays, tree)) = whitted_tree(&scene, film, args.max_rays) else {
+    let lens = args
+        .sample
+        .map(|k| snell::render::whitted_lens_sample(s, x, y, k));
+    let Some((color, rays, tree)) = whitted_tree(&scene, film, lens, args.max_rays) else {
         eprintln!("error: no ray was recorded");
         return ExitCode::from(1);
     };
@@ -123,11 +126,13 @@ pub(crate) fn explain(args: ExplainArgs) -> ExitCode {
     ExitCode::SUCCESS
 }
 
-/// The Whitted tree of the ray through film position `film`: the colour it returns, the rays
-/// traced, and the tree (`None` when nothing was recorded).
+/// The Whitted tree of the ray through film position `film` (and the lens at `lens`, if the
+/// camera has one; its centre without): the colour it returns, the rays traced, and the
+/// tree (`None` when nothing was recorded).
 pub(crate) fn whitted_tree(
     scene: &snell::Scene,
     film: (f32, f32),
+    lens: Option<snell::math::Vec2>,
     max_rays: usize,
 ) -> Option<(
     snell::math::Color,
@@ -135,7 +140,11 @@ pub(crate) fn whitted_tree(
     snell::integrator::explain::RayNode,
 )> {
     let s = &scene.settings;
-    let ray = scene.camera.ray(film.0, film.1, s.width, s.height);
+    let camera = scene.camera.raster(s.width, s.height);
+    let ray = match lens {
+        Some(u) => camera.ray_lens(film.0, film.1, u),
+        None => camera.ray(film.0, film.1),
+    };
     let mut rec = TreeRecorder::new(max_rays);
     let mut rays = snell::integrator::RayStats::default();
     let color = Whitted.explain(scene, &ray, &mut rays, &mut rec);
@@ -186,7 +195,8 @@ pub(crate) fn path_json(
     let s = &scene.settings;
     let mut sampler = snell::sampler::Sampler::new(s.integrator.sampler, s.seed);
     let (px, py, _) = snell::render::start_sample(s, &mut sampler, x, y, k);
-    let ray = scene.camera.ray(px, py, s.width, s.height);
+    let camera = scene.camera.raster(s.width, s.height);
+    let ray = snell::render::camera_ray(&camera, &mut sampler, px, py);
     let mut rays = snell::integrator::RayStats::default();
     let mut rec = PathRecord::default();
     let color = Path.trace(scene, &ray, &mut sampler, &mut rays, &mut rec);

@@ -6,7 +6,6 @@ use super::format::*;
 use super::meshes::{LoadedMesh, MeshCache, Palette};
 use super::{BuildStats, Fog, IntegratorSettings, Limits, Object, RenderSettings, Scene};
 use crate::accel::Bvh;
-use crate::camera::Camera;
 use crate::film::Filter;
 use crate::geometry::{Cone, Cuboid, Cylinder, Disk, Plane, Rect, Shape, Sphere, Triangle};
 use crate::light::{Light, LightSampler};
@@ -18,6 +17,7 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
+mod camera;
 mod emitters;
 mod environment;
 mod material;
@@ -764,42 +764,6 @@ impl Builder<'_> {
         }
     }
 
-    fn camera(&mut self, d: &CameraDef, path: &DocPath) -> Camera {
-        let position = self.point(d.position, &path.key("position"));
-        let look_at = self.point(d.look_at, &path.key("look_at"));
-        let up = self.direction(d.up, &path.key("up"));
-        let fov = self.finite(d.fov, &path.key("fov"));
-        if !(fov > 0.0 && fov < 180.0) {
-            self.error_help(
-                path.key("fov"),
-                format!("field of view must be between 0 and 180 degrees (exclusive), not {fov}"),
-                "the seed scene uses 28.07",
-            );
-        }
-        let forward = look_at - position;
-        if forward.length_squared() == 0.0 {
-            self.error(
-                path.key("look_at"),
-                "the camera looks at its own position: look_at must differ from position",
-            );
-            return Camera::new(Vec3A::ZERO, -Vec3A::Z, Vec3A::Y, 45.0);
-        }
-        if forward.normalize().cross(up).length() < 1e-6 {
-            self.error_help(
-                path.key("up"),
-                "up is parallel to the viewing direction, so the camera's roll is undefined",
-                "choose an up vector not along look_at - position",
-            );
-            return Camera::new(Vec3A::ZERO, -Vec3A::Z, Vec3A::Y, 45.0);
-        }
-        Camera::new(
-            position,
-            look_at,
-            up,
-            if fov > 0.0 && fov < 180.0 { fov } else { 45.0 },
-        )
-    }
-
     fn fog(&mut self, d: &FogDef, path: &DocPath) -> Fog {
         let color = self.color(d.color, &path.key("color"));
         match d.mode {
@@ -1363,7 +1327,7 @@ mod tests {
         assert!(load(&fog).is_ok(), "{:?}", load(&fog).err());
         for (camera, object, key) in [
             (", \"up\": null", "", "camera.up"),
-            (", \"fov\": null", "", "camera.fov"),
+            (", \"aperture\": null", "", "camera.aperture"),
             (", \"position\": null", "", "camera.position"),
         ] {
             let e = load(&scene(camera, object)).unwrap_err().to_string();

@@ -155,9 +155,30 @@ pub struct CameraDef {
     /// Which way is up.
     #[serde(default = "y_axis")]
     pub up: V3,
-    /// Vertical field of view in degrees.
-    #[serde(default = "default_fov")]
-    pub fov: f32,
+    /// Vertical field of view in degrees, for a perspective camera (default 45).
+    pub fov: Option<f32>,
+    /// `"perspective"` (rays from the eye) or `"orthographic"` (parallel rays).
+    #[serde(default, rename = "type")]
+    pub kind: CameraKind,
+    /// Orthographic: the height of the view in scene units (required there).
+    pub height: Option<f32>,
+    /// The lens's radius in scene units: 0 (a pinhole) keeps everything sharp; larger
+    /// blurs what is nearer or farther than `focus_distance`.
+    #[serde(default)]
+    pub aperture: f32,
+    /// Distance along the view to the plane in focus [default: the distance to look_at].
+    pub focus_distance: Option<f32>,
+}
+
+/// `[camera] type`.
+#[derive(Clone, Copy, Debug, Default, Deserialize, Serialize, JsonSchema, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub enum CameraKind {
+    /// Rays from the eye through the film.
+    #[default]
+    Perspective,
+    /// Parallel rays along the view.
+    Orthographic,
 }
 
 /// `[world]`.
@@ -560,9 +581,6 @@ fn grey_half() -> ColorDef {
 }
 fn unit_scale() -> ScaleDef {
     ScaleDef([1.0; 3])
-}
-fn default_fov() -> f32 {
-    45.0
 }
 fn default_spot_angle() -> f32 {
     30.0

@@ -408,7 +408,7 @@ async fn explain(State(ctx): Ctx, RawQuery(q): RawQuery) -> Response {
             crate::explain::path_json(&scene, path, (x, y), 0).0
         } else {
             let film = (x as f32 + 0.5, y as f32 + 0.5);
-            match crate::explain::whitted_tree(&scene, film, 200) {
+            match crate::explain::whitted_tree(&scene, film, None, 200) {
                 Some((color, rays, tree)) => crate::explain::whitted_json(
                     &scene,
                     path,
@@ -490,12 +490,13 @@ async fn camera(State(ctx): Ctx, body: String) -> Response {
         fov: f32,
     }
     let view = match serde_json::from_str::<Body>(&body) {
-        Ok(b) => CameraView {
-            position: Vec3A::from(b.position),
-            look_at: Vec3A::from(b.look_at),
-            up: Vec3A::from(b.up),
-            fov: b.fov,
-        },
+        // The file's projection and lens are kept (preview.rs puts them back).
+        Ok(b) => CameraView::perspective(
+            Vec3A::from(b.position),
+            Vec3A::from(b.look_at),
+            Vec3A::from(b.up),
+            b.fov,
+        ),
         Err(e) => return error(StatusCode::BAD_REQUEST, &format!("not a camera: {e}")),
     };
     if !view.is_valid() {

@@ -268,7 +268,11 @@ fn load(shared: &Shared) -> bool {
                 s.camera_override = None;
             }
             s.file_camera = Some(file_camera);
-            if let Some(c) = s.camera_override.and_then(Camera::from_view) {
+            if let Some(c) = s
+                .camera_override
+                .map(|o| with_lens_of(o, file_camera))
+                .and_then(Camera::from_view)
+            {
                 scene.camera = c;
             }
             s.integrator = match scene.settings.integrator.kind {
@@ -336,7 +340,10 @@ fn render(shared: &Shared) -> Result<(), String> {
         };
         s.generation += 1;
         // The camera may have changed since the scene was loaded.
-        let wanted = s.camera_override.or(s.file_camera);
+        let wanted = match (s.camera_override, s.file_camera) {
+            (Some(o), Some(f)) => Some(with_lens_of(o, f)),
+            (o, f) => o.or(f),
+        };
         let scene = match wanted.and_then(Camera::from_view) {
             Some(c) if c != scene.camera => {
                 let mut moved = (*scene).clone();
@@ -450,6 +457,16 @@ fn publish(
     }));
     s.version += 1;
     shared.announce(s);
+}
+
+/// A camera the page moved (placement and field of view), with the file camera's
+/// projection and lens.
+fn with_lens_of(moved: CameraView, file: CameraView) -> CameraView {
+    CameraView {
+        projection: file.projection,
+        lens: file.lens,
+        ..moved
+    }
 }
 
 #[cfg(test)]
