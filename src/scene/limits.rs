@@ -23,7 +23,7 @@ pub struct Limits {
 impl Default for Limits {
     fn default() -> Self {
         Limits {
-            max_pixels: 1 << 28,         // 16384 x 16384: 3 GiB of film
+            max_pixels: 1 << 28,         // 16384 x 16384: 13 GiB of film and image
             max_spp: 65_536,             // 256 x 256
             max_depth: 64,               // far beyond what a picture shows
             max_texture_pixels: 1 << 28, // 16384 x 16384: 3 GiB decoded
@@ -128,9 +128,11 @@ impl Limits {
         }
     }
 
-    /// Bytes a render keeps per pixel: the film (three `f32`), the finished tiles (three
-    /// more, kept for checkpoints) and the encoded output.
-    pub const BYTES_PER_PIXEL: u64 = 12 + 12 + 4;
+    /// Bytes a render keeps per pixel, the larger of the two ways: the path tracer's film
+    /// of sums (a 32-byte `FilmPixel`), or Whitted's film of colours and the finished
+    /// tiles kept for checkpoints (16 bytes each); then the finished image (16) and the
+    /// encoded output (4).
+    pub const BYTES_PER_PIXEL: u64 = 32 + 16 + 4;
 }
 
 const GIB: f64 = (1u64 << 30) as f64;
