@@ -210,56 +210,50 @@ impl Checkpoint {
             0
         };
         let mut tiles = BTreeMap::new();
-        if kind == 1 {
-            // The header's size, checked against the bytes there before allocating.
-            let n = width as u64 * height as u64;
-            if (r.bytes.len() - r.at) as u64 / 32 < n {
-                return Err(truncated());
-            }
-            let mut film = Film::new(width, height);
-            for y in 0..height {
-                for x in 0..width {
-                    let mut f = || r.f32().ok_or_else(truncated);
-                    let (sum, weight) = ([f()?, f()?, f()?], f()?);
-                    let unsigned = [f()?, f()?, f()?];
-                    let samples = r.u32().ok_or_else(truncated)?;
-                    *film.get_mut(x, y) = FilmPixel {
-                        sum,
-                        weight,
-                        unsigned,
-                        samples,
-                    };
+        let film = match kind {
+            0 => {
+                let count = r.u32().ok_or_else(truncated)?;
+                for _ in 0..count {
+                    let index = r.u32().ok_or_else(truncated)?;
+                    let n = r.u32().ok_or_else(truncated)? as usize;
+                    // A tile has at most 16 x 16 pixels; refuse anything else before
+                    // allocating.
+                    if n > (crate::film::TILE * crate::film::TILE) as usize {
+                        return Err(bad("a tile is larger than 16 x 16 pixels"));
+                    }
+                    let mut pixels = Vec::with_capacity(n);
+                    for _ in 0..n {
+                        pixels.push(r.color().ok_or_else(truncated)?);
+                    }
+                    tiles.insert(index, pixels);
                 }
+                None
             }
-            return Ok(Checkpoint {
-                fingerprint,
-                width,
-                height,
-                spp,
-                seed,
-                integrator,
-                scene,
-                output,
-                tiles,
-                film: Some(film),
-            });
-        } else if kind != 0 {
-            return Err(bad("it keeps its progress in a way snell does not know"));
-        }
-        let count = r.u32().ok_or_else(truncated)?;
-        for _ in 0..count {
-            let index = r.u32().ok_or_else(truncated)?;
-            let n = r.u32().ok_or_else(truncated)? as usize;
-            // A tile has at most 16 x 16 pixels; refuse anything else before allocating.
-            if n > (crate::film::TILE * crate::film::TILE) as usize {
-                return Err(bad("a tile is larger than 16 x 16 pixels"));
+            1 => {
+                // The header's size, checked against the bytes there before allocating.
+                let n = width as u64 * height as u64;
+                if (r.bytes.len() - r.at) as u64 / 32 < n {
+                    return Err(truncated());
+                }
+                let mut film = Film::new(width, height);
+                for y in 0..height {
+                    for x in 0..width {
+                        let mut f = || r.f32().ok_or_else(truncated);
+                        let (sum, weight) = ([f()?, f()?, f()?], f()?);
+                        let unsigned = [f()?, f()?, f()?];
+                        let samples = r.u32().ok_or_else(truncated)?;
+                        *film.get_mut(x, y) = FilmPixel {
+                            sum,
+                            weight,
+                            unsigned,
+                            samples,
+                        };
+                    }
+                }
+                Some(film)
             }
-            let mut pixels = Vec::with_capacity(n);
-            for _ in 0..n {
-                pixels.push(r.color().ok_or_else(truncated)?);
-            }
-            tiles.insert(index, pixels);
-        }
+            _ => return Err(bad("it keeps its progress in a way snell does not know")),
+        };
         Ok(Checkpoint {
             fingerprint,
             width,
@@ -270,7 +264,7 @@ impl Checkpoint {
             scene,
             output,
             tiles,
-            film: None,
+            film,
         })
     }
 }

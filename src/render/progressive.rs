@@ -195,6 +195,14 @@ mod tests {
         .unwrap()
     }
 
+    fn options() -> RenderOptions<'static> {
+        RenderOptions {
+            threads: Some(2),
+            progress: &|_| {},
+            cancel: None,
+        }
+    }
+
     fn bits(p: &[crate::math::Color]) -> Vec<u32> {
         p.iter()
             .flat_map(|c| c.to_array().map(f32::to_bits))
@@ -207,11 +215,7 @@ mod tests {
     fn passes_and_a_cancelled_one_give_one_render() {
         let scene = scene();
         let whole = render(&scene, &Path, Some(2), &|_| {}).unwrap();
-        let options = RenderOptions {
-            threads: Some(2),
-            progress: &|_| {},
-            cancel: None,
-        };
+        let options = options();
         let until = Until {
             spp: 13,
             time: None,
@@ -267,11 +271,7 @@ mod tests {
     #[test]
     fn a_spent_time_stops_after_a_pass() {
         let scene = scene();
-        let options = RenderOptions {
-            threads: Some(2),
-            progress: &|_| {},
-            cancel: None,
-        };
+        let options = options();
         let until = Until {
             spp: 13,
             time: Some(Duration::ZERO),

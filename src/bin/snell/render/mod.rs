@@ -254,8 +254,7 @@ pub(crate) fn render(args: RenderArgs) -> ExitCode {
             threads.unwrap_or_else(rayon::current_num_threads),
         );
     }
-    let rendered = &outcome;
-    let bad = &rendered.bad_samples;
+    let bad = &outcome.bad_samples;
     if bad.count > 0 && !args.quiet {
         let places: Vec<String> = bad
             .examples
@@ -285,7 +284,7 @@ pub(crate) fn render(args: RenderArgs) -> ExitCode {
         );
     }
     if args.stats {
-        print_stats(&scene.stats, load_time, &rendered.rays, elapsed);
+        print_stats(&scene.stats, load_time, &outcome.rays, elapsed);
     }
     ExitCode::SUCCESS
 }
