@@ -1,12 +1,13 @@
 //! The environment: light arriving from infinitely far away in every direction, a constant
-//! colour or an equirectangular image (latitude-longitude), sampled in proportion to the
-//! image's brightness.
+//! colour, an equirectangular image (latitude-longitude) sampled in proportion to the
+//! image's brightness, or a daylight sky with its sun (sky/).
 //!
 //! The image's convention (docs/scene-format.md, `[environment]`): `+y` is up; the image's
 //! top row is straight up and its bottom row straight down; its centre column (`u = 0.5`)
 //! lies toward `-z`, and `u` grows toward `+x` (so the picture is seen unmirrored from
 //! inside, looking toward `-z`). `rotate` turns the image about the world's axes.
 
+use super::sky::Sky;
 use crate::math::distribution2d::Distribution2d;
 use crate::math::{Color, Transform, Vec2, Vec3A, luminance};
 use crate::texture::ImageData;
@@ -30,6 +31,8 @@ pub enum EnvironmentSource {
     Constant(Color),
     /// A latitude-longitude image.
     Map(Box<EnvironmentMap>),
+    /// A daylight sky and its sun.
+    Sky(Box<Sky>),
 }
 
 /// An equirectangular image, its placement, and the density it is sampled with.
@@ -67,7 +70,7 @@ fn uv_of(d: Vec3A) -> Vec2 {
 
 /// The unit direction (in the image's frame) of image coordinates `(u, v)`, and the sine of
 /// its angle from straight up.
-fn direction_of(uv: Vec2) -> (Vec3A, f32) {
+pub(crate) fn direction_of(uv: Vec2) -> (Vec3A, f32) {
     let (phi, theta) = ((uv.x - 0.5) * 2.0 * PI, uv.y * PI);
     let (st, ct) = theta.sin_cos();
     let (sp, cp) = phi.sin_cos();
@@ -136,7 +139,21 @@ impl EnvironmentMap {
         self.density.pdf(uv) / (2.0 * PI * PI * sin)
     }
 
-    fn sample(&self, u: Vec2) -> Option<EnvironmentSample> {
+    /// Radiance from world direction `world` and the density of [`EnvironmentMap::sample`]
+    /// for it.
+    #[inline]
+    pub(crate) fn radiance_pdf(&self, world: Vec3A) -> (Color, f32) {
+        let uv = self.uv(world);
+        (self.radiance_at(uv), self.pdf_at(uv))
+    }
+
+    /// The radiance averaged over all directions.
+    pub(crate) fn mean(&self) -> Color {
+        self.mean
+    }
+
+    /// A direction in proportion to the image's brightness.
+    pub(crate) fn sample(&self, u: Vec2) -> Option<EnvironmentSample> {
         let (uv, pdf_uv) = self.density.sample(u)?;
         let (local, sin) = direction_of(uv);
         if sin <= 0.0 {
@@ -157,6 +174,7 @@ impl Environment {
         match &self.source {
             EnvironmentSource::Constant(c) => *c,
             EnvironmentSource::Map(m) => m.radiance_at(m.uv(dir)),
+            EnvironmentSource::Sky(s) => s.radiance(dir),
         }
     }
 
@@ -170,6 +188,7 @@ impl Environment {
                 pdf: crate::math::sampling::UNIFORM_SPHERE_PDF,
             }),
             EnvironmentSource::Map(m) => m.sample(u),
+            EnvironmentSource::Sky(s) => s.sample(u),
         }
     }
 
@@ -178,6 +197,7 @@ impl Environment {
         match &self.source {
             EnvironmentSource::Constant(_) => crate::math::sampling::UNIFORM_SPHERE_PDF,
             EnvironmentSource::Map(m) => m.pdf_at(m.uv(dir)),
+            EnvironmentSource::Sky(s) => s.radiance_pdf(dir).1,
         }
     }
 
@@ -187,10 +207,8 @@ impl Environment {
     pub fn radiance_pdf(&self, dir: Vec3A) -> (Color, f32) {
         match &self.source {
             EnvironmentSource::Constant(c) => (*c, crate::math::sampling::UNIFORM_SPHERE_PDF),
-            EnvironmentSource::Map(m) => {
-                let uv = m.uv(dir);
-                (m.radiance_at(uv), m.pdf_at(uv))
-            }
+            EnvironmentSource::Map(m) => m.radiance_pdf(dir),
+            EnvironmentSource::Sky(s) => s.radiance_pdf(dir),
         }
     }
 
@@ -200,6 +218,7 @@ impl Environment {
         let mean = match &self.source {
             EnvironmentSource::Constant(c) => *c,
             EnvironmentSource::Map(m) => m.mean,
+            EnvironmentSource::Sky(s) => s.mean(),
         };
         PI * radius * radius * PI * luminance(mean)
     }

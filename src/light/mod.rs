@@ -7,6 +7,7 @@
 pub mod area;
 pub mod environment;
 pub mod select;
+pub mod sky;
 
 pub use area::{AreaLight, Emitter, ObjectLights};
 pub use environment::{Environment, EnvironmentMap, EnvironmentSample, EnvironmentSource};

@@ -11,6 +11,7 @@ mod frame;
 mod offset;
 mod rng;
 pub mod sampling;
+pub mod spectrum;
 mod transform;
 
 pub use aabb::Aabb;

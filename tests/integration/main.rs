@@ -17,6 +17,7 @@ mod robustness;
 mod schema;
 mod serve;
 mod shading;
+mod sky;
 mod textured;
 
 use std::path::{Path, PathBuf};

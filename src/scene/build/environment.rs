@@ -1,7 +1,8 @@
 //! `[environment]` to an [`Environment`]: the image loaded (as textures are, within the
-//! texture limit) and its density built, or one colour.
+//! texture limit) and its density built, a sky (sky.rs), or one colour.
 
 use super::Builder;
+use crate::light::sky::Sky;
 use crate::light::{Environment, EnvironmentMap, EnvironmentSource};
 use crate::scene::diag::DocPath;
 use crate::scene::format::EnvironmentDef;
@@ -15,6 +16,10 @@ impl Builder<'_> {
         path: &DocPath,
     ) -> Option<Environment> {
         match d {
+            EnvironmentDef::Sky { visible, .. } => Some(Environment {
+                source: EnvironmentSource::Sky(Box::new(Sky::new(&self.sky(d, path)?))),
+                visible: *visible,
+            }),
             EnvironmentDef::Constant { color, visible } => Some(Environment {
                 source: EnvironmentSource::Constant(self.color(*color, &path.key("color"))),
                 visible: *visible,

@@ -21,6 +21,7 @@ mod camera;
 mod emitters;
 mod environment;
 mod material;
+mod sky;
 
 /// Reads, checks and builds the scene in `path` (`.toml` or `.json`). Relative paths in it
 /// resolve against its folder.
