@@ -11,8 +11,11 @@
 //! 1 path), its sampler (u32: 0 independent, 1 Sobol) and clamp (u32 1 and an f32, or 0 and
 //! 0.0 for none), the scene's and the output's paths (u32 length, UTF-8), then what is done:
 //! u32 0, the tile count (u32), then per tile its index and pixel count (u32 each) and its
-//! pixels (three f32 each); or u32 1 and the film, row by row, each pixel its sums (three
-//! f32), weight (f32), unsigned sums (three f32) and sample count (u32). It is written to a
+//! pixels (three f32 each); or u32 2 and the film, row by row, each pixel its sums (three
+//! f32), weight (f32), unsigned sums (three f32), sample count (u32) and sum of squared
+//! luminances (f32). Films saved without the squares (u32 1) are still read, their pixels'
+//! spread taken as none (so the error estimate of a render resumed from one counts only
+//! the samples after it as noisy). It is written to a
 //! temporary file and renamed into place, so a checkpoint is never half written. Version 2
 //! files (tiles only, without the u32 0) and version 1 files (without the integrator too)
 //! are still read.
@@ -139,14 +142,14 @@ impl Checkpoint {
             out.extend_from_slice(s.as_bytes());
         }
         if let Some(film) = &self.film {
-            u32s(&mut out, &[1]);
+            u32s(&mut out, &[2]);
             for y in 0..film.height() {
                 for x in 0..film.width() {
                     let p = film.get(x, y);
                     u32s(&mut out, &p.sum.map(f32::to_bits));
                     u32s(&mut out, &[p.weight.to_bits()]);
                     u32s(&mut out, &p.unsigned.map(f32::to_bits));
-                    u32s(&mut out, &[p.samples]);
+                    u32s(&mut out, &[p.samples, p.sum_sq.to_bits()]);
                 }
             }
         } else {
@@ -229,10 +232,11 @@ impl Checkpoint {
                 }
                 None
             }
-            1 => {
+            1 | 2 => {
                 // The header's size, checked against the bytes there before allocating.
                 let n = width as u64 * height as u64;
-                if (r.bytes.len() - r.at) as u64 / 32 < n {
+                let size = if kind == 2 { 36 } else { 32 };
+                if (r.bytes.len() - r.at) as u64 / size < n {
                     return Err(truncated());
                 }
                 let mut film = Film::new(width, height);
@@ -242,11 +246,21 @@ impl Checkpoint {
                         let (sum, weight) = ([f()?, f()?, f()?], f()?);
                         let unsigned = [f()?, f()?, f()?];
                         let samples = r.u32().ok_or_else(truncated)?;
+                        let sum_sq = if kind == 2 {
+                            r.f32().ok_or_else(truncated)?
+                        } else if samples > 0 {
+                            // No spread known: every sample taken to be the mean.
+                            let l = crate::math::luminance(Color::from(unsigned));
+                            l * l / samples as f32
+                        } else {
+                            0.0
+                        };
                         *film.get_mut(x, y) = FilmPixel {
                             sum,
                             weight,
                             unsigned,
                             samples,
+                            sum_sq,
                         };
                     }
                 }

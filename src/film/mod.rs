@@ -8,13 +8,13 @@ pub mod tiles;
 pub use filter::{Filter, FilterKind};
 pub use tiles::{TILE, TileGrid};
 
-use crate::math::Color;
+use crate::math::{Color, luminance};
 use rayon::prelude::*;
 
 /// What a pixel's samples have added up to: the sums that make its value, so that more
 /// samples can be added later (a progressive render, a pass after a checkpoint) and give
-/// the same bytes as taking them all at once. Plain arrays, 32 bytes, so that a large
-/// film stays small.
+/// the same bytes as taking them all at once, and the sum of squares that estimates its
+/// error. Plain arrays, 36 bytes, so that a large film stays small.
 #[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Zeroable)]
 #[repr(C)]
 pub struct FilmPixel {
@@ -26,22 +26,48 @@ pub struct FilmPixel {
     pub unsigned: [f32; 3],
     /// How many samples.
     pub samples: u32,
+    /// The squares of the samples' luminances added up: with `unsigned` and `samples`, the
+    /// spread of the samples, from which the pixel's error is estimated.
+    pub sum_sq: f32,
 }
 
 impl FilmPixel {
     /// Adds a sample `c` whose filter weight has sign `sign`.
     #[inline]
     pub fn add(&mut self, c: Color, sign: f32) {
-        self.add_sums(c * sign, sign, c, 1);
+        let l = luminance(c);
+        self.add_sums(c * sign, sign, c, l * l, 1);
     }
 
-    /// Adds the sums of `samples` samples taken elsewhere.
+    /// Adds the sums of `samples` samples taken elsewhere (`sum_sq`: their squared
+    /// luminances).
     #[inline]
-    pub fn add_sums(&mut self, sum: Color, weight: f32, unsigned: Color, samples: u32) {
+    pub fn add_sums(
+        &mut self,
+        sum: Color,
+        weight: f32,
+        unsigned: Color,
+        sum_sq: f32,
+        samples: u32,
+    ) {
         self.sum = (Color::from(self.sum) + sum).into();
         self.weight += weight;
         self.unsigned = (Color::from(self.unsigned) + unsigned).into();
+        self.sum_sq += sum_sq;
         self.samples += samples;
+    }
+
+    /// The variance of the pixel's luminance as an estimate (the samples' variance over
+    /// their number), from their spread; `None` below two samples, where there is none.
+    #[inline]
+    pub fn variance_of_mean(&self) -> Option<f32> {
+        if self.samples < 2 {
+            return None;
+        }
+        let n = self.samples as f64;
+        let mean = luminance(Color::from(self.unsigned)) as f64 / n;
+        let var = (self.sum_sq as f64 / n - mean * mean).max(0.0) * n / (n - 1.0);
+        Some((var / n) as f32)
     }
 
     /// The pixel's value: the samples averaged with the signs of their weights, never below
@@ -176,6 +202,20 @@ impl Film<FilmPixel> {
             pixels: self.rows(FilmPixel::value),
         }
     }
+
+    /// The picture's expected mean relative difference from the converged one (the measure
+    /// bench/ and the comparisons with Mitsuba use: the sum of the pixels' absolute errors
+    /// over the sum of their values, in luminance), estimated from each pixel's spread: a
+    /// pixel's expected absolute error is `sqrt(2 / pi)` times its standard error, as for a
+    /// normal error. `None` while a pixel has fewer than two samples or the picture is black.
+    pub fn estimated_error(&self) -> Option<f32> {
+        let (mut err, mut sum) = (0.0f64, 0.0f64);
+        for p in &self.pixels {
+            err += (p.variance_of_mean()? as f64).sqrt();
+            sum += luminance(p.value()) as f64;
+        }
+        (sum > 0.0).then(|| (err * (2.0 / std::f64::consts::PI).sqrt() / sum) as f32)
+    }
 }
 
 /// A rendered image: linear RGB, row 0 at the top.
@@ -231,6 +271,46 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// The variance of a pixel's estimate, worked by hand: samples of luminance 1, 2, 3 and 4
+    /// spread with variance 5/3, so their mean's is 5/12; none below two samples.
+    #[test]
+    fn a_pixels_variance_is_its_samples_spread_over_their_number() {
+        let mut p = FilmPixel::default();
+        p.add(Color::splat(1.0), 1.0);
+        assert_eq!(p.variance_of_mean(), None);
+        for v in [2.0, 3.0, 4.0] {
+            p.add(Color::splat(v), 1.0);
+        }
+        let v = p.variance_of_mean().unwrap();
+        assert!((v - 5.0 / 12.0).abs() < 1e-5, "{v}");
+    }
+
+    /// The estimated error of a film whose pixels each hold `n` samples spread evenly about
+    /// their mean `m` with standard deviation `sigma` is `sqrt(2 / pi) sigma / sqrt(n) / m`;
+    /// a film with a pixel of one sample has none.
+    #[test]
+    fn a_films_estimated_error_follows_its_spread() {
+        let (n, m, sigma) = (16u32, 0.5f32, 0.2f32);
+        let mut film: Film = Film::new(8, 4);
+        for y in 0..4 {
+            for x in 0..8 {
+                let p = film.get_mut(x, y);
+                for k in 0..n {
+                    // Half the samples above the mean, half below: variance sigma² exactly
+                    // (over n), which the unbiased estimate scales by n / (n - 1).
+                    let d = if k % 2 == 0 { sigma } else { -sigma };
+                    p.add(Color::splat(m + d), 1.0);
+                }
+            }
+        }
+        let e = film.estimated_error().unwrap();
+        let sd = sigma * (n as f32 / (n - 1) as f32).sqrt();
+        let want = (2.0 / std::f32::consts::PI).sqrt() * sd / (n as f32).sqrt() / m;
+        assert!((e - want).abs() < 1e-4 * want, "{e} {want}");
+        film.get_mut(3, 2).samples = 1;
+        assert_eq!(film.estimated_error(), None);
     }
 
     /// A pixel's value is its samples' signed average, never negative, the unsigned average

@@ -1,6 +1,8 @@
 //! Debug views (arbitrary output variables): what the ray through each pixel's centre meets
 //! first — its normal, uv, distance, surface colour, object and material — and how deep the
-//! integrator's rays behind it go (Whitted's tree, or the path tracer's path of sample 0). One ray per pixel, no anti-aliasing, so ids stay exact.
+//! integrator's rays behind it go (Whitted's tree, or the path tracer's path of sample 0),
+//! one ray per pixel, no anti-aliasing, so ids stay exact; and how uncertain the path
+//! tracer's pixels are (`variance`, from the render's own samples).
 //!
 //! [`AovBuffers::channels`] gives the raw values (for a multi-layer EXR);
 //! [`AovBuffers::display`] maps them to colours that read well (for PNG), documented in
@@ -31,11 +33,14 @@ pub enum Aov {
     Material,
     /// How many reflections and refractions the Whitted tree behind the pixel goes down.
     Bounces,
+    /// How uncertain the path tracer's pixel is: the variance of its estimate, from the
+    /// spread of its samples (the render's own, not a centre ray's).
+    Variance,
 }
 
 impl Aov {
     /// Every view, in the order they are documented.
-    pub const ALL: [Aov; 7] = [
+    pub const ALL: [Aov; 8] = [
         Aov::Normal,
         Aov::Uv,
         Aov::Depth,
@@ -43,6 +48,7 @@ impl Aov {
         Aov::Object,
         Aov::Material,
         Aov::Bounces,
+        Aov::Variance,
     ];
 
     /// The name used on the command line, in file names and as the EXR layer name.
@@ -55,6 +61,7 @@ impl Aov {
             Aov::Object => "object",
             Aov::Material => "material",
             Aov::Bounces => "bounces",
+            Aov::Variance => "variance",
         }
     }
 
@@ -85,6 +92,12 @@ pub struct AovBuffers {
     pub material: Vec<i32>,
     /// Reflections and refractions below the camera ray (0: the camera ray alone).
     pub bounces: Vec<u32>,
+    /// The variance of each pixel's luminance as the render estimated it, NaN where it is
+    /// unknown (fewer than two samples, or a render that kept no sums): empty until
+    /// [`AovBuffers::set_variance`].
+    pub variance: Vec<f32>,
+    /// Each pixel's luminance in the render, beside its variance.
+    pub luminance: Vec<f32>,
 }
 
 /// What one pixel's centre ray finds.
@@ -127,6 +140,8 @@ pub fn render_aovs(scene: &Scene, threads: Option<usize>) -> Result<AovBuffers, 
         object: all.iter().map(|s| s.object).collect(),
         material: all.iter().map(|s| s.material).collect(),
         bounces: all.iter().map(|s| s.bounces).collect(),
+        variance: vec![f32::NAN; all.len()],
+        luminance: vec![0.0; all.len()],
     })
 }
 
@@ -207,8 +222,16 @@ fn ramp(t: f32) -> Color {
 }
 
 impl AovBuffers {
+    /// Takes each pixel's variance and luminance from the film of the path tracer's sums
+    /// the picture was made from.
+    pub fn set_variance(&mut self, film: &Film) {
+        self.variance = film.rows(|p| p.variance_of_mean().unwrap_or(f32::NAN));
+        self.luminance = film.rows(|p| crate::math::luminance(p.value()));
+    }
+
     /// The raw values of `aov` as named channels, for an EXR layer: normal `X Y Z`, uv
-    /// `U V`, depth `Z`, albedo `R G B`, object and material `id`, bounces `count`.
+    /// `U V`, depth `Z`, albedo `R G B`, object and material `id`, bounces `count`, variance
+    /// `Y` (of the pixel's luminance).
     pub fn channels(&self, aov: Aov) -> Vec<(&'static str, Vec<f32>)> {
         let per = |f: &dyn Fn(usize) -> f32| (0..self.depth.len()).map(f).collect::<Vec<f32>>();
         match aov {
@@ -227,6 +250,7 @@ impl AovBuffers {
             Aov::Object => vec![("id", per(&|i| self.object[i] as f32))],
             Aov::Material => vec![("id", per(&|i| self.material[i] as f32))],
             Aov::Bounces => vec![("count", per(&|i| self.bounces[i] as f32))],
+            Aov::Variance => vec![("Y", self.variance.clone())],
         }
     }
 
@@ -239,7 +263,10 @@ impl AovBuffers {
     ///   distance; black where nothing is hit;
     /// - albedo: the surface colour, sRGB-encoded like the render;
     /// - object, material: a distinct colour per index (see [`id_color`]);
-    /// - bounces: a ramp from dark blue (0) to yellow (`max_depth - 1`).
+    /// - bounces: a ramp from dark blue (0) to yellow (`max_depth - 1`);
+    /// - variance: the pixel's relative standard error, `sqrt(variance) / (luminance +
+    ///   0.01)`, on the same ramp by its logarithm: dark blue at 0.1 % or less, yellow at
+    ///   100 % or more (a decade every third of the ramp); black where it is unknown.
     pub fn display(&self, aov: Aov, max_depth: u32) -> Image {
         let mut img = Image::new(self.width, self.height);
         let (near, far) = self
@@ -280,6 +307,15 @@ impl AovBuffers {
                 Aov::Object => id_color(self.object[i]),
                 Aov::Material => id_color(self.material[i]),
                 Aov::Bounces => ramp(self.bounces[i] as f32 / (max_depth.max(2) - 1) as f32),
+                Aov::Variance => {
+                    let v = self.variance[i];
+                    if v.is_nan() {
+                        Color::ZERO
+                    } else {
+                        let rel = v.max(0.0).sqrt() / (self.luminance[i].max(0.0) + 0.01);
+                        ramp((rel.max(1e-3).log10() + 3.0) / 3.0)
+                    }
+                }
                 _ => Color::ZERO,
             };
             let v = value.clamp(Color::ZERO, Color::ONE);

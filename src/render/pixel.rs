@@ -114,21 +114,24 @@ pub fn add_stratified(
     bad: &mut BadSamples,
 ) {
     let s = &scene.settings;
-    let (mut sum, mut weight, mut unsigned) = (Color::ZERO, 0.0f32, Color::ZERO);
+    let (mut sum, mut weight, mut unsigned, mut sum_sq) =
+        (Color::ZERO, 0.0f32, Color::ZERO, 0.0f32);
     let mut colors = [Color::ZERO; CAMERA_BATCH];
     let mut trace = |batch: &[Ray], signs: &[f32]| {
         let colors = &mut colors[..batch.len()];
         integrator.radiance_batch(scene, batch, colors, rays);
         // The sums in locals for the batch, not through the closure's references, so that
         // they stay in registers across the loop.
-        let (mut s, mut w, mut u) = (sum, weight, unsigned);
+        let (mut s, mut w, mut u, mut q) = (sum, weight, unsigned, sum_sq);
         for ((ray, sign), &c) in batch.iter().zip(signs).zip(colors.iter()) {
             let c = checked(scene, c, ray, x, y, bad);
             s += c * *sign;
             w += sign;
             u += c;
+            let l = crate::math::luminance(c);
+            q += l * l;
         }
-        (sum, weight, unsigned) = (s, w, u);
+        (sum, weight, unsigned, sum_sq) = (s, w, u, q);
     };
     // The camera rays of several samples are made before any is traced, so that their
     // square roots and divisions overlap instead of each waiting behind the previous
@@ -166,7 +169,7 @@ pub fn add_stratified(
     });
     make(&film[..len], &mut batch[..len]);
     trace(&batch[..len], &signs[..len]);
-    pixel.add_sums(sum, weight, unsigned, s.spp);
+    pixel.add_sums(sum, weight, unsigned, sum_sq, s.spp);
 }
 
 /// `c`, or black where it is NaN or infinite: a non-finite sample would poison the whole

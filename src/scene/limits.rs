@@ -129,10 +129,10 @@ impl Limits {
     }
 
     /// Bytes a render keeps per pixel, the larger of the two ways: the path tracer's film
-    /// of sums (a 32-byte `FilmPixel`), or Whitted's film of colours and the finished
+    /// of sums (a 36-byte `FilmPixel`), or Whitted's film of colours and the finished
     /// tiles kept for checkpoints (16 bytes each); then the finished image (16) and the
     /// encoded output (4).
-    pub const BYTES_PER_PIXEL: u64 = 32 + 16 + 4;
+    pub const BYTES_PER_PIXEL: u64 = 36 + 16 + 4;
 }
 
 const GIB: f64 = (1u64 << 30) as f64;

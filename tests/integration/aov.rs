@@ -126,9 +126,25 @@ fn the_command_writes_pngs_or_exr_layers() {
     );
     for a in Aov::ALL {
         let p = dir.join(format!("s.{}.png", a.name()));
+        if a == Aov::Variance {
+            // The seed is Whitted's, whose `all` has no variance.
+            assert!(!p.exists());
+            continue;
+        }
         let img = image::open(&p).unwrap_or_else(|e| panic!("{}: {e}", p.display()));
         assert_eq!((img.width(), img.height()), (40, 30));
     }
+    let o = run(&[
+        &["render", scene, "-o", "v.png", "--aov", "variance"][..],
+        &common,
+    ]
+    .concat());
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        String::from_utf8_lossy(&o.stderr).contains("the variance view is the path tracer's"),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
     let o = run(&[
         &[
             "render",
@@ -259,4 +275,63 @@ fn bounces_count_the_path_tracers_path_under_path() {
         // The same numbers again: sample 0 of each pixel, not a new draw.
         assert_eq!(render_aovs(&scene, Some(1)).unwrap().bounces, path.bounces);
     }
+}
+
+/// The variance view of a path-traced Cornell box: an EXR layer of each pixel's variance
+/// (none where every sample is the same, as on the light and outside the box; some on the
+/// walls, more where fewer samples were taken), and a PNG on the ramp.
+#[test]
+fn the_variance_view_shows_the_pictures_noise() {
+    let dir = scratch("aov-variance");
+    let scene = repo("scenes/cornell.toml");
+    let variance = |spp: &str, out: &str| -> Vec<f32> {
+        let o = Command::new(env!("CARGO_BIN_EXE_snell"))
+            .args(["render", scene.to_str().unwrap(), "-o", out, "-q"])
+            .args(["--width", "32", "--height", "32", "--spp", spp])
+            .args(["--aov", "variance"])
+            .current_dir(&dir)
+            .output()
+            .unwrap();
+        assert_eq!(
+            o.status.code(),
+            Some(0),
+            "{}",
+            String::from_utf8_lossy(&o.stderr)
+        );
+        let exr = exr::prelude::read_all_flat_layers_from_file(dir.join(out)).unwrap();
+        let ch = exr.layer_data[0]
+            .channel_data
+            .list
+            .iter()
+            .find(|c| c.name.to_string() == "variance.Y")
+            .expect("a variance.Y channel");
+        ch.sample_data.values_as_f32().collect()
+    };
+    let v16 = variance("16", "c16.exr");
+    assert_eq!(v16.len(), 32 * 32);
+    assert!(v16.iter().all(|v| v.is_finite() && *v >= 0.0));
+    let zero = v16.iter().filter(|v| **v == 0.0).count();
+    assert!(zero > 0 && zero < 200, "{zero} pixels without noise");
+    let v64 = variance("64", "c64.exr");
+    let (a, b): (f32, f32) = (v16.iter().sum(), v64.iter().sum());
+    assert!(
+        b < 0.5 * a,
+        "the variance falls with the samples: {a} then {b}"
+    );
+    let o = Command::new(env!("CARGO_BIN_EXE_snell"))
+        .args(["render", scene.to_str().unwrap(), "-o", "c.png", "-q"])
+        .args([
+            "--width", "32", "--height", "32", "--spp", "4", "--aov", "variance",
+        ])
+        .current_dir(&dir)
+        .output()
+        .unwrap();
+    assert_eq!(
+        o.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    let img = image::open(dir.join("c.variance.png")).unwrap().to_rgb8();
+    assert_eq!((img.width(), img.height()), (32, 32));
 }

@@ -105,8 +105,8 @@ fn bad_command_lines_exit_2() {
         stderr(&o)
     );
     // Raised past what the machine holds: refused before rendering, with the estimate
-    // (65536 x 65536 pixels need 208 GiB; skipped on a machine with more than that free).
-    if snell::scene::available_memory().is_some_and(|a| a < 208 << 30) {
+    // (65536 x 65536 pixels need 224 GiB; skipped on a machine with more than that free).
+    if snell::scene::available_memory().is_some_and(|a| a < 224 << 30) {
         let o = expect(
             &[
                 "render",
@@ -122,7 +122,7 @@ fn bad_command_lines_exit_2() {
             2,
         );
         assert!(
-            stderr(&o).contains("this render would need about 208.0 GiB (image 208.0 GiB"),
+            stderr(&o).contains("this render would need about 224.0 GiB (image 224.0 GiB"),
             "{}",
             stderr(&o)
         );

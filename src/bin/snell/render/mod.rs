@@ -97,11 +97,23 @@ pub(crate) fn render(args: RenderArgs) -> ExitCode {
             return ExitCode::from(1);
         }
     };
+    let random = snell::integrator::chosen(scene.settings.integrator.kind).uses_sampler();
     let mut aovs: Vec<Aov> = vec![];
-    for a in args.aov.iter().flatten() {
-        if !aovs.contains(a) {
-            aovs.push(*a);
+    for list in &args.aov {
+        // `all` is every view the integrator has: Whitted has no variance.
+        let all = list.as_slice() == Aov::ALL;
+        for a in list {
+            let unavailable = all && *a == Aov::Variance && !random;
+            if !aovs.contains(a) && !unavailable {
+                aovs.push(*a);
+            }
         }
+    }
+    if aovs.contains(&Aov::Variance) && !random {
+        return usage_error(
+            "the variance view is the path tracer's: Whitted's samples are fixed strata, not random ones whose spread estimates an error",
+            Some("render with --integrator path (or [integrator] type = \"path\")"),
+        );
     }
     // Separate PNGs are reserved now, like the picture, so a bad path fails before rendering.
     let mut aov_outputs = vec![];
@@ -158,6 +170,7 @@ pub(crate) fn render(args: RenderArgs) -> ExitCode {
         checkpoint: checkpoint_path.as_deref(),
         every: std::time::Duration::from_secs_f64(args.checkpoint_every),
         saver: &saver,
+        keep_film: aovs.contains(&Aov::Variance),
     };
     // The path tracer renders in passes, unless it resumes a checkpoint of tiles (an
     // earlier snell's).
@@ -197,7 +210,7 @@ pub(crate) fn render(args: RenderArgs) -> ExitCode {
             .commit_toned(&outcome.image, &scene.settings.tone)
             .map_err(|e| e.to_string())
     } else {
-        write_aovs(&scene, threads, &outcome.image, pending, &aovs, aov_outputs)
+        write_aovs(&scene, threads, &outcome, pending, &aovs, aov_outputs)
     };
     if let Err(e) = written {
         eprintln!("error: {e}");
@@ -241,8 +254,12 @@ pub(crate) fn render(args: RenderArgs) -> ExitCode {
         } else {
             String::new()
         };
+        let error = outcome
+            .error
+            .map(|e| format!("; estimated error {:.2} %", 100.0 * e))
+            .unwrap_or_default();
         outln!(
-            "wrote {}: {w} x {h}, {} spp{}, {samples} samples{resumed_part} in {elapsed:.2} s ({:.2} M samples/s, {} threads)",
+            "wrote {}: {w} x {h}, {} spp{}, {samples} samples{resumed_part} in {elapsed:.2} s ({:.2} M samples/s, {} threads){error}",
             out_path.display(),
             outcome.spp,
             if outcome.spp < spp {
@@ -304,6 +321,10 @@ pub(crate) struct Outcome {
     pub(crate) done: String,
     /// Where it stopped, to save when interrupted.
     pub(crate) checkpoint: Option<Checkpoint>,
+    /// The picture's estimated mean relative difference from the converged one (passes).
+    pub(crate) error: Option<f32>,
+    /// The film of sums, kept for the variance view when it is asked for.
+    pub(crate) film: Option<snell::film::Film>,
 }
 
 /// What a render is, for its checkpoints.
@@ -349,6 +370,8 @@ pub(crate) struct Run<'a> {
     pub(crate) checkpoint: Option<&'a Path>,
     pub(crate) every: std::time::Duration,
     pub(crate) saver: &'a Saver<'a>,
+    /// Whether the variance view wants the film of sums kept.
+    pub(crate) keep_film: bool,
 }
 
 /// Every sample of each pixel at once, tile by tile (Whitted, whose strata are fixed by the
@@ -403,6 +426,8 @@ fn render_tiles(
         image: rendered.image,
         rays: rendered.rays,
         bad_samples: rendered.bad_samples,
+        error: None,
+        film: None,
     })
 }
 
@@ -440,12 +465,16 @@ fn warn_if_long(scene: &snell::Scene, threads: Option<usize>) {
 fn write_aovs(
     scene: &snell::Scene,
     threads: Option<usize>,
-    image: &snell::film::Image,
+    outcome: &Outcome,
     pending: PendingOutput,
     aovs: &[Aov],
     pngs: Vec<(Aov, PendingOutput)>,
 ) -> Result<(), String> {
-    let buffers = render_aovs(scene, threads).map_err(|e| e.to_string())?;
+    let image = &outcome.image;
+    let mut buffers = render_aovs(scene, threads).map_err(|e| e.to_string())?;
+    if let Some(film) = &outcome.film {
+        buffers.set_variance(film);
+    }
     if pending.format() == OutputFormat::Exr {
         let layers: Vec<ExrLayer> = aovs
             .iter()

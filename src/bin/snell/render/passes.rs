@@ -1,6 +1,6 @@
 //! The path tracer's render in passes over a film of sums (1, 2, 4 ... samples per pixel),
-//! with `--time`, a progress bar in samples, checkpoints between passes, and Ctrl-C writing
-//! the picture of the samples taken so far.
+//! with `--time`, a progress bar in samples with the error estimated after each pass,
+//! checkpoints between passes, and Ctrl-C writing the picture of the samples taken so far.
 
 use super::{Outcome, Run, STOP};
 use snell::film::Film;
@@ -31,6 +31,9 @@ pub(crate) fn render_passes(
         progress: &progress,
         cancel: Some(&STOP),
     };
+    // The picture's estimated error after the last pass, shown on the bar (worked out only
+    // where the bar is seen: it reads the whole film).
+    let mut error: Option<f32> = None;
     let mut last_save = Instant::now();
     let mut save_error = None;
     let until = Until { spp: s.spp, time };
@@ -44,9 +47,15 @@ pub(crate) fn render_passes(
             PassEvent::Start { from, to } => {
                 base.store(pixels * from as u64, Ordering::Relaxed);
                 step.store((to - from) as u64, Ordering::Relaxed);
-                run.bar.set_message(format!("{from} → {to} spp  "));
+                let error = error
+                    .map(|e| format!(", error ≈ {:.2} %", 100.0 * e))
+                    .unwrap_or_default();
+                run.bar.set_message(format!("{from} → {to} spp{error}  "));
             }
             PassEvent::Done { .. } => {
+                if !run.bar.is_hidden() {
+                    error = film.estimated_error();
+                }
                 if let Some(path) = run.checkpoint
                     && last_save.elapsed() >= run.every
                 {
@@ -74,8 +83,19 @@ pub(crate) fn render_passes(
     let spp = film_samples(&film);
     let most = film.pixels().iter().map(|p| p.samples).max().unwrap_or(0);
     let ended = done.ended.unwrap_or(Ended::Cancelled);
+    let error = film.estimated_error();
+    let image = film.image();
+    // The film goes to the checkpoint of an interrupted render, to the variance view, or
+    // (copied) to both.
+    let checkpoint = |film| run.saver.checkpoint(Default::default(), Some(film));
+    let (checkpoint, kept) = match (ended == Ended::Cancelled, run.keep_film) {
+        (true, true) => (Some(checkpoint(film.clone())), Some(film)),
+        (true, false) => (Some(checkpoint(film)), None),
+        (false, true) => (None, Some(film)),
+        (false, false) => (None, None),
+    };
     Ok(Outcome {
-        image: film.image(),
+        image,
         rays: done.rays,
         bad_samples: done.bad_samples,
         complete: ended != Ended::Cancelled,
@@ -89,7 +109,8 @@ pub(crate) fn render_passes(
         } else {
             format!("{spp} samples per pixel of {}", s.spp)
         },
-        checkpoint: (ended == Ended::Cancelled)
-            .then(|| run.saver.checkpoint(Default::default(), Some(film))),
+        checkpoint,
+        error,
+        film: kept,
     })
 }
