@@ -16,7 +16,8 @@ What it does, in one run
 (b) snell: runs ``SNELL render SCENE --integrator path --spp N --output OUT.exr`` (plus any
     --snell-arg) from the repository root for a rising series of N (--spp-list), timing each
     process's wall clock (so snell's times include process start, scene load and BVH build,
-    which Mitsuba's do not), and takes each image's RMSE against a snell reference
+    which Mitsuba's do not) and the render's own time (from snell's closing line: its samples
+    over its rate, the like-for-like figure), and takes each image's RMSE against a snell reference
     (--snell-ref; rendered with ``--spp`` --snell-ref-spp, default 4096, when missing).  The
     series stops at the first N whose RMSE is at or below Mitsuba's 64-spp RMSE (--no-stop runs
     it all).  The equal-error time is interpolated in log-log between the two runs that bracket
@@ -46,6 +47,7 @@ when there; otherwise the copy below).  This script is a manual benchmark, not r
 import argparse
 import math
 import os
+import re
 import subprocess
 import sys
 import time
@@ -155,6 +157,9 @@ def make_mitsuba_ref(mi, dr, scene, path, spp, chunk):
 
 
 def run_snell(snell, scene, spp, out, extra):
+    """The process's wall-clock time, and the render's own (snell's closing line: its samples
+    over its rate, which leave out process start, scene load and writing, as Mitsuba's time
+    leaves out loading and compilation)."""
     cmd = [snell, 'render', scene, '--integrator', 'path', '--spp', str(spp), '--output', out] + extra
     t0 = time.perf_counter()
     p = subprocess.run(cmd, cwd=REPO, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
@@ -162,7 +167,9 @@ def run_snell(snell, scene, spp, out, extra):
     if p.returncode != 0:
         sys.stdout.write(p.stdout)
         raise SystemExit(f'snell failed (exit {p.returncode}): {" ".join(cmd)}')
-    return t
+    m = re.search(r'(\d+) samples in [\d.]+ s \(([\d.]+) M samples/s', p.stdout)
+    render = int(m.group(1)) / (float(m.group(2)) * 1e6) if m else t
+    return t, render
 
 
 def loglog_time(rows, target):
@@ -241,17 +248,18 @@ def main():
         if not os.path.exists(args.snell_ref):
             print(f'\nsnell reference: {args.snell_ref} missing; rendering {args.snell_ref_spp} spp')
             os.makedirs(os.path.dirname(os.path.abspath(args.snell_ref)), exist_ok=True)
-            t = run_snell(snell, args.scene, args.snell_ref_spp, args.snell_ref, args.snell_arg)
+            t, _ = run_snell(snell, args.scene, args.snell_ref_spp, args.snell_ref, args.snell_arg)
             print(f'snell reference: {t:.1f} s')
         sref = read_exr(mi, args.snell_ref)
         print(f'\n(b) snell {args.scene}, --integrator path; RMSE vs {args.snell_ref}; target RMSE {target:.6f}')
-        print(f'    {"spp":>6} {"time s":>9} {"RMSE":>10}  reaches')
+        print(f'    {"spp":>6} {"time s":>9} {"render s":>9} {"RMSE":>10}  reaches')
         for spp in [int(x) for x in args.spp_list.split(',') if x.strip()]:
             out = os.path.join(args.workdir, f'snell-{spp}.exr')
-            t = min(run_snell(snell, args.scene, spp, out, args.snell_arg) for _ in range(max(1, args.repeats)))
+            runs = [run_snell(snell, args.scene, spp, out, args.snell_arg) for _ in range(max(1, args.repeats))]
+            t, tr = min(r[0] for r in runs), min(r[1] for r in runs)
             e = compare(read_exr(mi, out), sref)['rmse']
-            rows.append((spp, t, e))
-            print(f'    {spp:>6} {t:>9.3f} {e:>10.6f}  {"yes" if e <= target else "no"}', flush=True)
+            rows.append((spp, t, e, tr))
+            print(f'    {spp:>6} {t:>9.3f} {tr:>9.3f} {e:>10.6f}  {"yes" if e <= target else "no"}', flush=True)
             if e <= target and not args.no_stop:
                 break
     else:
@@ -261,10 +269,11 @@ def main():
     print('\n(c) summary')
     print(f'    {"renderer":<10} {"spp":>6} {"time s":>9} {"RMSE":>10}')
     print(f'    {"mitsuba":<10} {MITSUBA_SPP:>6} {t_mi:>9.3f} {target:>10.6f}')
-    for spp, t, e in rows:
+    for spp, t, e, _ in rows:
         print(f'    {"snell":<10} {spp:>6} {t:>9.3f} {e:>10.6f}')
     if rows:
-        t_eq, first, note = loglog_time(rows, target)
+        t_render, _, _ = loglog_time([(spp, tr, e) for spp, _, e, tr in rows], target)
+        t_eq, first, note = loglog_time([r[:3] for r in rows], target)
         if t_eq is None:
             print(f'    snell never reached RMSE {target:.6f} ({note}); extend --spp-list')
         else:
@@ -273,6 +282,9 @@ def main():
             print(f'    first measured snell run reaching it: {first[0]} spp, {first[1]:.3f} s, RMSE {first[2]:.6f}')
             print(f'    ratio snell_time / mitsuba_time = {t_eq / t_mi:.3f} (interpolated), '
                   f'{first[1] / t_mi:.3f} (first run reaching it)')
+            if t_render is not None:
+                print(f'    like for like (snell\'s render alone, as Mitsuba\'s time is: no start-up, load '
+                      f'or writing): {t_render:.3f} s, ratio {t_render / t_mi:.3f} (interpolated)')
     if sref is not None:
         r = compare(sref, mref)
         print(f'    references: A = {args.snell_ref}, B = {args.mitsuba_ref}')

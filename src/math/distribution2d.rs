@@ -7,12 +7,23 @@ use super::distribution::Distribution1d;
 
 /// A density over `[0, 1)^2`, constant over each cell of a `width` x `height` grid and in
 /// proportion to the cell's weight. `x` runs along a row, `y` down the rows.
+///
+/// Each row's cells are kept as one stretch of cumulative probabilities in `f32` and a guide
+/// table of `u16`, all rows in one allocation: sampling a large map is bound by the cache
+/// misses of reading them (docs/perf-log.md), and a cell's density comes from the same
+/// numbers its samples were drawn by, so the two agree exactly.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Distribution2d {
     /// Over the rows, by their totals.
     rows: Distribution1d,
-    /// Within each row, over its cells.
-    columns: Vec<Distribution1d>,
+    width: usize,
+    /// Row by row, `width + 1` numbers each: the probability of the cells before each cell
+    /// within the row (0 first, 1 last).
+    cdf: Vec<f32>,
+    /// Row by row, `width` numbers each: entry `k` is the last cell `i` whose `cdf[i]` is at
+    /// most `k / width`, where the search for a `u` in that bucket starts. Empty for rows
+    /// too wide for `u16` (searched whole).
+    guide: Vec<u16>,
 }
 
 impl Distribution2d {
@@ -20,43 +31,108 @@ impl Distribution2d {
     /// weights count as 0; with no weight at all every cell is alike.
     pub fn new(weights: &[f32], width: usize, height: usize) -> Self {
         assert_eq!(weights.len(), width * height, "one weight per cell");
-        let columns: Vec<Distribution1d> = weights
-            .chunks_exact(width.max(1))
-            .map(Distribution1d::new)
-            .collect();
-        let totals: Vec<f32> = weights
-            .chunks_exact(width.max(1))
-            .map(|row| {
-                row.iter()
-                    .filter(|w| w.is_finite() && **w > 0.0)
-                    .map(|&w| w as f64)
-                    .sum::<f64>() as f32
-            })
-            .collect();
+        let w = width.max(1);
+        let clean = |x: f32| {
+            if x.is_finite() && x > 0.0 {
+                x as f64
+            } else {
+                0.0
+            }
+        };
+        let mut cdf = Vec::with_capacity(height * (w + 1));
+        let guided = w <= u16::MAX as usize + 1;
+        let mut guide = Vec::with_capacity(if guided { height * w } else { 0 });
+        let mut totals = Vec::with_capacity(height);
+        for row in weights.chunks_exact(w) {
+            let total: f64 = row.iter().map(|&x| clean(x)).sum();
+            totals.push(total as f32);
+            // A row of no weight is never chosen; its cells are made alike all the same.
+            let (weight, sum): (&dyn Fn(f32) -> f64, f64) = if total > 0.0 {
+                (&clean, total)
+            } else {
+                (&|_| 1.0, w as f64)
+            };
+            let start = cdf.len();
+            let mut acc = 0.0f64;
+            cdf.push(0.0f32);
+            for &x in row {
+                acc += weight(x);
+                cdf.push((acc / sum) as f32);
+            }
+            cdf[start + w] = 1.0;
+            if guided {
+                let c = &cdf[start..];
+                for k in 0..w {
+                    let x = k as f32 / w as f32;
+                    let i = (c.partition_point(|&v| v <= x).saturating_sub(1)).min(w - 1);
+                    guide.push(i as u16);
+                }
+            }
+        }
         Distribution2d {
             rows: Distribution1d::new(&totals),
-            columns,
+            width: w,
+            cdf,
+            guide,
         }
+    }
+
+    /// Row `r`'s cumulative probabilities.
+    #[inline]
+    fn row_cdf(&self, r: usize) -> &[f32] {
+        &self.cdf[r * (self.width + 1)..(r + 1) * (self.width + 1)]
+    }
+
+    /// The cell of row `r` that `u` (in `[0, 1)`) falls in: the last `i` with `cdf[i] <= u`,
+    /// which has a width (the cells of none before it are passed over).
+    #[inline]
+    fn column(&self, r: usize, u: f32) -> usize {
+        let (w, c) = (self.width, self.row_cdf(r));
+        if !self.guide.is_empty() {
+            let g = &self.guide[r * w..(r + 1) * w];
+            let k = ((u * w as f32) as usize).min(w - 1);
+            let lo = g[k] as usize;
+            let hi = if k + 1 < w { g[k + 1] as usize + 1 } else { w };
+            // Rounding may put `u` just outside its bucket's range: then the whole row.
+            if c[lo] <= u && c[hi] > u {
+                return lo + c[lo..=hi].partition_point(|&v| v <= u) - 1;
+            }
+        }
+        (c.partition_point(|&v| v <= u).saturating_sub(1)).min(w - 1)
     }
 
     /// A point of the square chosen by `u`, with its density; `None` for an empty grid.
     pub fn sample(&self, u: Vec2) -> Option<(Vec2, f32)> {
         let (y, py) = self.rows.sample_continuous(u.y)?;
-        let row = self.row(y);
-        let (x, px) = self.columns[row].sample_continuous(u.x)?;
-        Some((Vec2::new(x, y), py * px))
+        let r = self.row(y);
+        let ux = u.x.clamp(0.0, 1.0 - f32::EPSILON);
+        let i = self.column(r, ux);
+        let c = self.row_cdf(r);
+        let (lo, hi) = (c[i], c[i + 1]);
+        let rest = ((ux - lo) / (hi - lo)).clamp(0.0, 1.0);
+        let n = self.width as f32;
+        let mut x = (i as f32 + rest) / n;
+        // Rounding may carry the point onto the next cell's edge: keep it in its own.
+        while x > 0.0 && (x * n) as usize > i {
+            x = f32::from_bits(x.to_bits() - 1);
+        }
+        Some((Vec2::new(x, y), py * (hi - lo) * n))
     }
 
     /// The density of [`Distribution2d::sample`] at `p`.
+    #[inline]
     pub fn pdf(&self, p: Vec2) -> f32 {
-        if self.columns.is_empty() {
+        if self.rows.is_empty() {
             return 0.0;
         }
-        self.rows.pdf_continuous(p.y) * self.columns[self.row(p.y)].pdf_continuous(p.x)
+        let c = self.row_cdf(self.row(p.y));
+        let i = ((p.x * self.width as f32) as usize).min(self.width - 1);
+        self.rows.pdf_continuous(p.y) * (c[i + 1] - c[i]) * self.width as f32
     }
 
     fn row(&self, y: f32) -> usize {
-        ((y * self.columns.len() as f32) as usize).min(self.columns.len() - 1)
+        let h = self.rows.len();
+        ((y * h as f32) as usize).min(h - 1)
     }
 }
 
@@ -70,7 +146,14 @@ mod tests {
     /// the density integrates to 1.
     #[test]
     fn samples_follow_the_density() {
-        let (w, h) = (8, 6);
+        // Narrow rows, and rows of many cells (whose edges meet the test's bins, so that
+        // its integral of the density is exact).
+        for (w, h) in [(8, 6), (48, 6)] {
+            samples_follow_the_density_of(w, h);
+        }
+    }
+
+    fn samples_follow_the_density_of(w: usize, h: usize) {
         let weights: Vec<f32> = (0..w * h)
             .map(|i| {
                 let (x, y) = (i % w, i / w);
@@ -98,7 +181,7 @@ mod tests {
             |p| d.pdf(p),
         )
         .unwrap();
-        let n = 400;
+        let n = 480; // a multiple of every grid's size: the midpoint rule is exact
         let integral: f64 = (0..n * n)
             .map(|k| {
                 let p = Vec2::new(

@@ -3,6 +3,7 @@
 //! that sampling builds on.
 
 mod aabb;
+pub mod approx;
 #[cfg(test)]
 pub(crate) mod chi2;
 pub mod distribution;
