@@ -29,6 +29,23 @@ impl Transform {
         ))
     }
 
+    /// From a column-major 4 x 4 matrix (glTF's), whose last row must be `0 0 0 1`. `None`
+    /// when it is not affine, not finite, or cannot be undone.
+    pub fn from_matrix(cols: [[f32; 4]; 4]) -> Option<Self> {
+        let m = glam::Mat4::from_cols_array_2d(&cols);
+        let det = m.determinant();
+        if !m.is_finite() || m.row(3) != glam::Vec4::W || det == 0.0 || !det.is_finite() {
+            return None;
+        }
+        Some(Self::from_affine(Affine3A::from_mat4(m)))
+    }
+
+    /// This placement, then `outer`'s: object space through this one to world space
+    /// through `outer`.
+    pub fn then(&self, outer: &Transform) -> Self {
+        Self::from_affine(outer.to_world * self.to_world)
+    }
+
     fn from_affine(to_world: Affine3A) -> Self {
         let to_object = to_world.inverse();
         Transform {
@@ -114,6 +131,41 @@ mod tests {
         assert!((p - Vec3A::new(0.0, 0.0, 3.0)).length() < 1e-5, "{p}");
         assert!((t.point_to_object(p) - Vec3A::X).length() < 1e-5);
         assert!(Transform::from_srt(Vec3::new(1.0, 0.0, 1.0), Vec3::ZERO, Vec3::ZERO).is_none());
+    }
+
+    /// A column-major matrix (a translation after a scale, as glTF writes it) places points
+    /// as its parts do; composing applies the inner placement first; matrices that are not
+    /// affine or cannot be undone are refused.
+    #[test]
+    fn matrices_and_composition() {
+        let m = Transform::from_matrix([
+            [2.0, 0.0, 0.0, 0.0],
+            [0.0, 2.0, 0.0, 0.0],
+            [0.0, 0.0, 2.0, 0.0],
+            [1.0, 2.0, 3.0, 1.0],
+        ])
+        .unwrap();
+        assert!((m.point_to_world(Vec3A::ONE) - Vec3A::new(3.0, 4.0, 5.0)).length() < 1e-6);
+        let r = Transform::from_srt(Vec3::ONE, Vec3::new(0.0, 90.0, 0.0), Vec3::ZERO).unwrap();
+        // Scale and move, then turn: (3, 4, 5) turned +90 about y is (5, 4, -3).
+        let p = m.then(&r).point_to_world(Vec3A::ONE);
+        assert!((p - Vec3A::new(5.0, 4.0, -3.0)).length() < 1e-5, "{p}");
+        let mut flat = [
+            [1.0, 0.0, 0.0, 0.0],
+            [0.0, 0.0, 0.0, 0.0],
+            [0.0, 0.0, 1.0, 0.0],
+            [0.0; 4],
+        ];
+        flat[3][3] = 1.0;
+        assert!(Transform::from_matrix(flat).is_none());
+        let mut projective = [
+            [1.0, 0.0, 0.0, 0.5],
+            [0.0, 1.0, 0.0, 0.0],
+            [0.0, 0.0, 1.0, 0.0],
+            [0.0; 4],
+        ];
+        projective[3][3] = 1.0;
+        assert!(Transform::from_matrix(projective).is_none());
     }
 
     #[test]

@@ -1,9 +1,11 @@
-//! Triangle mesh files: Wavefront OBJ (with MTL materials) and Stanford PLY.
+//! Triangle mesh files: Wavefront OBJ (with MTL materials), Stanford PLY, and glTF 2.0
+//! scenes of meshes (gltf.rs).
 //!
 //! [`load`] picks the loader from the file extension. The loaders never panic on bad
 //! input: every problem is either a [`MeshError`] naming the file and a line (text) or
 //! byte offset (binary PLY), or a summarised entry in [`MeshData::warnings`].
 
+pub mod gltf;
 pub mod obj;
 pub mod ply;
 

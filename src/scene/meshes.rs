@@ -1,6 +1,7 @@
 //! Meshes in a scene: `[meshes.NAME]` and objects of type `mesh`. Each file is read and its
 //! BVH built once, however many objects place it (instancing); its MTL materials become scene
-//! materials.
+//! materials. A glTF file is a scene of its own: each of its meshes is built once, and an
+//! object placing the file becomes one object per node that places a mesh (gltf.rs here).
 
 use super::build::Builder;
 use super::diag::{DocPath, did_you_mean};
@@ -14,10 +15,15 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::time::Instant;
 
-/// A mesh ready to be placed: its shared geometry and the scene materials of its slots.
+/// A mesh ready to be placed: its shared geometry and the scene materials of its slots
+/// (and, from a glTF file, where its node puts it).
 #[derive(Clone, Debug)]
 pub(super) struct LoadedMesh {
     pub mesh: Arc<Mesh>,
+    /// The node's placement within the file (glTF), applied before the object's.
+    pub node: Option<crate::math::Transform>,
+    /// The node's name, where a file places several meshes.
+    pub part: Option<String>,
     /// The file as the scene first names it.
     pub file: String,
     /// Scene material of each of the file's materials (empty when it has none).
@@ -26,8 +32,9 @@ pub(super) struct LoadedMesh {
     pub unread_mtl: Vec<String>,
 }
 
-/// Loaded meshes by (file, normals option); `None` where loading failed (reported once).
-pub(super) type MeshCache = HashMap<(PathBuf, Option<bool>), Option<LoadedMesh>>;
+/// Loaded meshes by (file, normals option): one placement for OBJ and PLY, one per node for
+/// glTF; `None` where loading failed (reported once).
+pub(super) type MeshCache = HashMap<(PathBuf, Option<bool>), Option<Vec<LoadedMesh>>>;
 
 /// The scene's materials and textures while they are being built, so meshes can add theirs.
 pub(super) struct Palette<'a> {
@@ -43,7 +50,7 @@ impl Builder<'_> {
         defs: &BTreeMap<String, MeshDef>,
         path: &DocPath,
         palette: &mut Palette,
-    ) -> Vec<(String, Option<LoadedMesh>)> {
+    ) -> Vec<(String, Option<Vec<LoadedMesh>>)> {
         defs.iter()
             .map(|(name, d)| {
                 let m = self.load_mesh(&d.file, d.smooth, &path.key(name).key("file"), palette);
@@ -57,10 +64,10 @@ impl Builder<'_> {
         &mut self,
         d: &MeshObjectDef,
         path: &DocPath,
-        named: &[(String, Option<LoadedMesh>)],
+        named: &[(String, Option<Vec<LoadedMesh>>)],
         used: &mut [bool],
         palette: &mut Palette,
-    ) -> Option<LoadedMesh> {
+    ) -> Option<Vec<LoadedMesh>> {
         match (&d.file, &d.mesh) {
             (Some(_), Some(_)) => {
                 self.error_help(
@@ -123,7 +130,7 @@ impl Builder<'_> {
         smooth: Option<bool>,
         path: &DocPath,
         palette: &mut Palette,
-    ) -> Option<LoadedMesh> {
+    ) -> Option<Vec<LoadedMesh>> {
         let full = self.base_dir.join(file);
         self.files.push(full.clone());
         let key = (
@@ -133,7 +140,15 @@ impl Builder<'_> {
         if let Some(cached) = self.mesh_cache.get(&key) {
             return cached.clone();
         }
-        let loaded = self.read_mesh(file, &full, smooth, path, palette);
+        let gltf = full
+            .extension()
+            .is_some_and(|e| e.eq_ignore_ascii_case("gltf") || e.eq_ignore_ascii_case("glb"));
+        let loaded = if gltf {
+            self.read_gltf(file, &full, smooth, path, palette)
+        } else {
+            self.read_mesh(file, &full, smooth, path, palette)
+                .map(|m| vec![m])
+        };
         self.mesh_cache.insert(key, loaded.clone());
         loaded
     }
@@ -153,7 +168,7 @@ impl Builder<'_> {
                 self.error_help(
                     path.clone(),
                     format!("cannot load mesh: {e}"),
-                    "paths are relative to the scene file's folder; OBJ (with MTL) and PLY are supported",
+                    "paths are relative to the scene file's folder; OBJ (with MTL), PLY and glTF (.gltf, .glb) are supported",
                 );
                 return None;
             }
@@ -165,6 +180,37 @@ impl Builder<'_> {
         let loader_notes = data.warnings.join("; ");
         let unread_mtl = std::mem::take(&mut data.unread_mtl);
         self.files.append(&mut data.mtl_files);
+        let (mesh, materials) = self.build_mesh(file, data, smooth, &loader_notes, path)?;
+        let stem = Path::new(file)
+            .file_name()
+            .map_or(file.into(), |n| n.to_string_lossy());
+        let mut slot_materials = vec![];
+        for m in &materials {
+            let material = self.mtl_material(m, path, palette.textures);
+            slot_materials.push(palette.materials.len());
+            palette.materials.push(material);
+            palette.names.push(format!("{stem}:{}", m.name));
+        }
+        Some(LoadedMesh {
+            mesh: Arc::new(mesh),
+            node: None,
+            part: None,
+            file: file.to_string(),
+            slot_materials,
+            unread_mtl,
+        })
+    }
+
+    /// A mesh file's data as a mesh with its BVH, within the scene's limits, and the file's
+    /// MTL materials (problems reported at `path`).
+    pub(super) fn build_mesh(
+        &mut self,
+        file: &str,
+        data: mesh_file::MeshData,
+        smooth: Option<bool>,
+        loader_notes: &str,
+        path: &DocPath,
+    ) -> Option<(Mesh, Vec<mesh_file::MtlMaterial>)> {
         let (input, materials) = match data.into_mesh_input(smooth) {
             Ok(converted) => converted,
             Err(MeshInputError::TooManyMaterials(n)) => {
@@ -215,21 +261,6 @@ impl Builder<'_> {
             );
             return None;
         }
-        let stem = Path::new(file)
-            .file_name()
-            .map_or(file.into(), |n| n.to_string_lossy());
-        let mut slot_materials = vec![];
-        for m in &materials {
-            let material = self.mtl_material(m, path, palette.textures);
-            slot_materials.push(palette.materials.len());
-            palette.materials.push(material);
-            palette.names.push(format!("{stem}:{}", m.name));
-        }
-        Some(LoadedMesh {
-            mesh: Arc::new(mesh),
-            file: file.to_string(),
-            slot_materials,
-            unread_mtl,
-        })
+        Some((mesh, materials))
     }
 }

@@ -4,6 +4,7 @@
 mod build;
 mod diag;
 pub mod format;
+mod gltf;
 mod limits;
 mod meshes;
 mod mtl;

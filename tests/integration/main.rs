@@ -8,6 +8,7 @@ mod cli;
 mod docs;
 mod environment;
 mod explain;
+mod gltf;
 mod meshes;
 mod optics;
 mod path;

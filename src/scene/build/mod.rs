@@ -542,21 +542,25 @@ impl Builder<'_> {
         let mut objects = vec![];
         for (i, o) in def.objects.iter().enumerate() {
             let path = root.key("objects").index(i);
-            let mesh = match o {
+            // One object, or one per mesh a glTF file's nodes place.
+            let parts: Vec<Option<LoadedMesh>> = match o {
                 ObjectDef::Mesh(m) => {
                     match self.mesh_object(m, &path, &named_meshes, &mut used_meshes, &mut palette)
                     {
-                        Some(m) => Some(m),
+                        Some(parts) => parts.into_iter().map(Some).collect(),
                         None => continue,
                     }
                 }
-                _ => None,
+                _ => vec![None],
             };
-            if let Some(obj) = self.object(o, i, &path, &palette.names[..user_materials], mesh) {
-                if obj.slot_materials.is_empty() {
-                    used_materials[obj.material] = true;
+            for mesh in parts {
+                if let Some(obj) = self.object(o, i, &path, &palette.names[..user_materials], mesh)
+                {
+                    if obj.slot_materials.is_empty() {
+                        used_materials[obj.material] = true;
+                    }
+                    objects.push(obj);
                 }
-                objects.push(obj);
             }
         }
         for ((name, _), used) in named_meshes.iter().zip(&used_meshes) {
@@ -623,6 +627,7 @@ impl Builder<'_> {
         let file_of = |m: &Arc<crate::geometry::Mesh>| {
             cache
                 .values()
+                .flatten()
                 .flatten()
                 .find(|l| Arc::ptr_eq(&l.mesh, m))
                 .map_or_else(String::new, |l| l.file.clone())
@@ -1073,6 +1078,18 @@ impl Builder<'_> {
         let transform = transform
             .as_ref()
             .and_then(|t| self.transform(t, &path.key("transform")));
+        // A glTF node's placement comes first, then the object's.
+        let (transform, part) = match &mesh {
+            Some(LoadedMesh {
+                node: Some(node),
+                part,
+                ..
+            }) => (
+                Some(transform.map_or(*node, |t| node.then(&t))),
+                part.clone(),
+            ),
+            _ => (transform, None),
+        };
         let shape = match mesh {
             Some(m) => Shape::Mesh(m.mesh),
             None => self.shape(d, path)?,
@@ -1080,6 +1097,10 @@ impl Builder<'_> {
         let name = name
             .clone()
             .unwrap_or_else(|| format!("{} #{index}", shape.kind()));
+        let name = match part {
+            Some(part) => format!("{name}/{part}"),
+            None => name,
+        };
         let local_bounds = shape.bounds();
         let world_bounds = local_bounds.map(|b| match &transform {
             Some(t) => t.bounds_to_world(&b),

@@ -71,7 +71,7 @@ pub struct SceneFile {
 #[derive(Debug, Deserialize, JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct MeshDef {
-    /// OBJ or PLY file, relative to the scene file.
+    /// OBJ, PLY or glTF (.gltf, .glb) file, relative to the scene file.
     pub file: String,
     /// Vertex normals: `true` computes area-weighted ones when the file has none, `false`
     /// ignores the file's (flat shading); by default the file's are used when it has them.
@@ -525,7 +525,7 @@ object_defs! {
     }
     /// A triangle mesh: a file, or a mesh defined under `[meshes]`.
     Mesh(MeshObjectDef) {
-        /// OBJ or PLY file, relative to the scene file.
+        /// OBJ, PLY or glTF (.gltf, .glb) file, relative to the scene file.
         file: Option<String>,
         /// Name of a mesh under `[meshes]` (instead of `file`).
         mesh: Option<String>,

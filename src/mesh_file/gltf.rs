@@ -1,0 +1,489 @@
+//! glTF 2.0 files (`.gltf` with its buffers and images beside it or inside it, and `.glb`)
+//! through the `gltf` crate: every mesh of the default scene (each stored once, however
+//! many nodes use it), the node hierarchy's placements of them, and the metallic-roughness
+//! materials with their base-colour images.
+//!
+//! Nothing in a file reaches the `gltf` crate's readers until its buffer views and
+//! accessors have been checked against the buffers' sizes, and indices against the vertex
+//! counts, so a malformed file is an error that names it and what is wrong, never a panic.
+//! glTF's axes are snell's (+y up, right-handed, metres), and its texture coordinates put
+//! v = 0 at the top of the image, as snell does.
+
+use super::{MeshData, MeshError};
+use gltf::mesh::Mode;
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+
+/// What a glTF file holds, ready to become scene objects.
+#[derive(Debug, Default)]
+pub struct GltfScene {
+    /// Each glTF mesh that a node places, its primitives merged (`triangle_materials`
+    /// index `slots`).
+    pub meshes: Vec<GltfMesh>,
+    /// The file's materials.
+    pub materials: Vec<PbrMaterial>,
+    /// Decoded images, by glTF image index (`None` for one no material uses).
+    pub images: Vec<Option<::image::DynamicImage>>,
+    /// The placements: a mesh of `meshes` and its node's world matrix (column-major).
+    pub instances: Vec<GltfInstance>,
+    /// Problems that did not stop the load.
+    pub warnings: Vec<String>,
+    /// The files read besides the glTF file itself (external buffers and images).
+    pub files: Vec<PathBuf>,
+}
+
+/// One glTF mesh as one snell mesh.
+#[derive(Debug)]
+pub struct GltfMesh {
+    /// Its name in the file, or `mesh N`.
+    pub name: String,
+    /// Its triangles; `triangle_materials` index `slots`.
+    pub data: MeshData,
+    /// The glTF material of each slot (`None`: glTF's default material).
+    pub slots: Vec<Option<usize>>,
+}
+
+/// A node placing a mesh.
+#[derive(Clone, Debug)]
+pub struct GltfInstance {
+    /// Index into [`GltfScene::meshes`].
+    pub mesh: usize,
+    /// The node's name, or `node N`.
+    pub node: String,
+    /// Object to world, column-major, the product of the node's and its ancestors'.
+    pub matrix: [[f32; 4]; 4],
+}
+
+/// A metallic-roughness material, as far as snell reads it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct PbrMaterial {
+    /// Its name, or `material N`.
+    pub name: String,
+    /// Linear RGBA.
+    pub base_color: [f32; 4],
+    /// The image of the base colour (sRGB), by index into [`GltfScene::images`], if any.
+    pub base_color_image: Option<usize>,
+    /// Which texture coordinates the base colour reads (0 or 1).
+    pub base_color_texcoord: u32,
+    /// 0 dielectric, 1 metal.
+    pub metallic: f32,
+    /// Perceptual roughness (GGX alpha is its square).
+    pub roughness: f32,
+    /// Emitted radiance, linear RGB (the factor times KHR_materials_emissive_strength).
+    pub emissive: [f32; 3],
+    /// KHR_materials_transmission's factor.
+    pub transmission: f32,
+    /// KHR_materials_ior's, 1.5 by default.
+    pub ior: f32,
+    /// Whether the back side is shaded too.
+    pub double_sided: bool,
+}
+
+impl Default for PbrMaterial {
+    /// glTF's default material: white, fully metallic and fully rough.
+    fn default() -> Self {
+        PbrMaterial {
+            name: "default".into(),
+            base_color: [1.0; 4],
+            base_color_image: None,
+            base_color_texcoord: 0,
+            metallic: 1.0,
+            roughness: 1.0,
+            emissive: [0.0; 3],
+            transmission: 0.0,
+            ior: 1.5,
+            double_sided: false,
+        }
+    }
+}
+
+/// Extensions a file may require that snell reads (or may ignore without changing the
+/// picture's geometry).
+const SUPPORTED_REQUIRED: &[&str] = &[
+    "KHR_materials_ior",
+    "KHR_materials_transmission",
+    "KHR_materials_emissive_strength",
+    "KHR_texture_transform",
+    "KHR_lights_punctual",
+];
+
+fn error(path: &Path, message: impl Into<String>) -> MeshError {
+    MeshError {
+        path: path.to_path_buf(),
+        line: None,
+        byte_offset: None,
+        message: message.into(),
+    }
+}
+
+/// Reads a `.gltf` or `.glb` file.
+pub fn load(path: &Path) -> Result<GltfScene, MeshError> {
+    let bytes = std::fs::read(path).map_err(|e| error(path, format!("cannot read it: {e}")))?;
+    parse(&bytes, path)
+}
+
+/// A glTF file's `bytes` (JSON or GLB) as [`load`] reads them, as if read from `path` (whose
+/// folder its buffer and image files are found in).
+pub fn parse(bytes: &[u8], path: &Path) -> Result<GltfScene, MeshError> {
+    let invalid = |e: gltf::Error| error(path, format!("not a valid glTF 2.0 file: {e}"));
+    // The extensions it requires first (their names say more than a failed validation),
+    // then the whole document.
+    let gltf::Gltf { document, blob } =
+        gltf::Gltf::from_slice_without_validation(bytes).map_err(invalid)?;
+    for ext in document.extensions_required() {
+        if !SUPPORTED_REQUIRED.contains(&ext) {
+            return Err(error(
+                path,
+                format!("it requires the extension {ext}, which snell does not support"),
+            ));
+        }
+    }
+    let document = gltf::Document::from_json(document.into_json()).map_err(invalid)?;
+    let base = path.parent().unwrap_or(Path::new("."));
+    let mut out = GltfScene::default();
+    for b in document.buffers() {
+        if let gltf::buffer::Source::Uri(uri) = b.source()
+            && !uri.starts_with("data:")
+        {
+            let file = base.join(uri);
+            out.files.push(file.clone());
+            if !file.is_file() {
+                return Err(error(
+                    path,
+                    format!("its buffer file {} is missing", file.display()),
+                ));
+            }
+        }
+    }
+    let buffers = gltf::import_buffers(&document, Some(base), blob)
+        .map_err(|e| error(path, format!("cannot read its buffers: {e}")))?;
+    check_views(&document, &buffers).map_err(|m| error(path, m))?;
+
+    // The scene's nodes, depth first, with their world matrices.
+    let scene = document
+        .default_scene()
+        .or_else(|| document.scenes().next());
+    let mut stack: Vec<(gltf::Node, [[f32; 4]; 4], usize)> = match &scene {
+        Some(s) => s.nodes().map(|n| (n, IDENTITY, 0)).collect(),
+        None => vec![],
+    };
+    let mut mesh_of: HashMap<usize, usize> = HashMap::new();
+    let mut used_materials = vec![false; document.materials().len()];
+    while let Some((node, parent, depth)) = stack.pop() {
+        if depth > 256 {
+            return Err(error(
+                path,
+                "its node hierarchy is deeper than 256 (a cycle?)",
+            ));
+        }
+        let world = mul(&parent, &node.transform().matrix());
+        if let Some(mesh) = node.mesh() {
+            let k = match mesh_of.get(&mesh.index()) {
+                Some(&k) => k,
+                None => {
+                    let m = read_mesh(&mesh, &buffers, &mut out.warnings)
+                        .map_err(|msg| error(path, msg))?;
+                    for s in m.slots.iter().flatten() {
+                        used_materials[*s] = true;
+                    }
+                    out.meshes.push(m);
+                    mesh_of.insert(mesh.index(), out.meshes.len() - 1);
+                    out.meshes.len() - 1
+                }
+            };
+            out.instances.push(GltfInstance {
+                mesh: k,
+                node: node
+                    .name()
+                    .map_or_else(|| format!("node {}", node.index()), str::to_string),
+                matrix: world,
+            });
+        }
+        stack.extend(node.children().map(|c| (c, world, depth + 1)));
+    }
+    out.instances.reverse();
+
+    out.materials = document.materials().map(|m| material(&m)).collect();
+    // The images the used materials show, decoded.
+    let mut wanted = vec![false; document.images().len()];
+    for (m, used) in out.materials.iter().zip(&used_materials) {
+        if let (Some(i), true) = (m.base_color_image, used) {
+            wanted[i] = true;
+        }
+    }
+    for image in document.images() {
+        if !wanted[image.index()] {
+            out.images.push(None);
+            continue;
+        }
+        if let gltf::image::Source::Uri { uri, .. } = image.source()
+            && !uri.starts_with("data:")
+        {
+            out.files.push(base.join(uri));
+        }
+        let data = gltf::image::Data::from_source(image.source(), Some(base), &buffers)
+            .map_err(|e| error(path, format!("cannot read image {}: {e}", image.index())))?;
+        out.images.push(Some(to_dynamic(data).ok_or_else(|| {
+            error(
+                path,
+                format!(
+                    "image {} has a pixel format snell does not read",
+                    image.index()
+                ),
+            )
+        })?));
+    }
+    Ok(out)
+}
+
+const IDENTITY: [[f32; 4]; 4] = [
+    [1.0, 0.0, 0.0, 0.0],
+    [0.0, 1.0, 0.0, 0.0],
+    [0.0, 0.0, 1.0, 0.0],
+    [0.0, 0.0, 0.0, 1.0],
+];
+
+/// `a * b` of column-major matrices.
+fn mul(a: &[[f32; 4]; 4], b: &[[f32; 4]; 4]) -> [[f32; 4]; 4] {
+    let mut out = [[0.0; 4]; 4];
+    for (c, col) in out.iter_mut().enumerate() {
+        for (r, v) in col.iter_mut().enumerate() {
+            *v = (0..4).map(|k| a[k][r] * b[c][k]).sum();
+        }
+    }
+    out
+}
+
+/// Every buffer view within its buffer, and every accessor within its view (or, without
+/// one, refused: sparse accessors and accessors of zeros are not read).
+fn check_views(doc: &gltf::Document, buffers: &[gltf::buffer::Data]) -> Result<(), String> {
+    for v in doc.views() {
+        let len = buffers.get(v.buffer().index()).map_or(0, |b| b.len());
+        if v.offset()
+            .checked_add(v.length())
+            .is_none_or(|end| end > len)
+        {
+            return Err(format!(
+                "buffer view {} ({} bytes from {}) runs past the end of buffer {} ({len} bytes)",
+                v.index(),
+                v.length(),
+                v.offset(),
+                v.buffer().index()
+            ));
+        }
+    }
+    for a in doc.accessors() {
+        if a.sparse().is_some() {
+            return Err(format!(
+                "accessor {} is sparse, which snell does not read",
+                a.index()
+            ));
+        }
+        let Some(view) = a.view() else {
+            if a.count() == 0 {
+                continue;
+            }
+            return Err(format!("accessor {} has no buffer view", a.index()));
+        };
+        if a.count() == 0 {
+            continue;
+        }
+        let stride = view.stride().unwrap_or(a.size());
+        let end = (a.count() - 1)
+            .checked_mul(stride)
+            .and_then(|x| x.checked_add(a.offset()))
+            .and_then(|x| x.checked_add(a.size()));
+        if end.is_none_or(|end| end > view.length()) {
+            return Err(format!(
+                "accessor {} ({} elements of {} bytes from {}) runs past the end of buffer view {} ({} bytes)",
+                a.index(),
+                a.count(),
+                a.size(),
+                a.offset(),
+                view.index(),
+                view.length()
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// One glTF mesh's triangle primitives merged into one mesh; points and lines are skipped
+/// with a warning.
+fn read_mesh(
+    mesh: &gltf::Mesh,
+    buffers: &[gltf::buffer::Data],
+    warnings: &mut Vec<String>,
+) -> Result<GltfMesh, String> {
+    let name = mesh
+        .name()
+        .map_or_else(|| format!("mesh {}", mesh.index()), str::to_string);
+    let mut data = MeshData::default();
+    let mut slots: Vec<Option<usize>> = vec![];
+    let mut any_normals = false;
+    let mut normals: Vec<Option<[f32; 3]>> = vec![];
+    let mut uvs: Vec<Option<[f32; 2]>> = vec![];
+    for (p, prim) in mesh.primitives().enumerate() {
+        let mode = prim.mode();
+        if !matches!(
+            mode,
+            Mode::Triangles | Mode::TriangleStrip | Mode::TriangleFan
+        ) {
+            warnings.push(format!(
+                "{name}: primitive {p} is {mode:?}, not triangles: skipped"
+            ));
+            continue;
+        }
+        let reader = prim.reader(|b| buffers.get(b.index()).map(|d| &d.0[..]));
+        let Some(positions) = reader.read_positions() else {
+            return Err(format!("{name}: primitive {p} has no POSITION"));
+        };
+        let base = data.positions.len();
+        data.positions.extend(positions);
+        let n = data.positions.len() - base;
+        match reader.read_normals() {
+            Some(it) => {
+                any_normals = true;
+                normals.extend(it.map(Some));
+            }
+            None => normals.extend(std::iter::repeat_n(None, n)),
+        }
+        match reader.read_tex_coords(0) {
+            // MeshData keeps OBJ's convention, v = 0 at the bottom of the image (the mesh
+            // input flips it to snell's); glTF's v = 0 is the top.
+            Some(it) => uvs.extend(it.into_f32().map(|[u, v]| Some([u, 1.0 - v]))),
+            None => uvs.extend(std::iter::repeat_n(None, n)),
+        }
+        // Attributes shorter or longer than the positions: each kept to the positions'.
+        normals.resize(base + n, None);
+        uvs.resize(base + n, None);
+        let indices: Vec<u32> = match reader.read_indices() {
+            Some(i) => i.into_u32().collect(),
+            None => (0..n as u32).collect(),
+        };
+        if let Some(bad) = indices.iter().find(|&&i| i as usize >= n) {
+            return Err(format!(
+                "{name}: primitive {p} has index {bad}, but only {n} vertices"
+            ));
+        }
+        let slot = prim.material().index();
+        let s = match slots.iter().position(|x| *x == slot) {
+            Some(s) => s,
+            None => {
+                slots.push(slot);
+                slots.len() - 1
+            }
+        };
+        let at = |i: u32| base as u32 + i;
+        let mut push = |a: u32, b: u32, c: u32| {
+            data.triangles.push([at(a), at(b), at(c)]);
+            data.triangle_materials.push(s as u32);
+        };
+        match mode {
+            Mode::Triangles => indices.chunks_exact(3).for_each(|t| push(t[0], t[1], t[2])),
+            // Every other triangle of a strip turns its winding back.
+            Mode::TriangleStrip => {
+                for (k, t) in indices.windows(3).enumerate() {
+                    if k % 2 == 0 {
+                        push(t[0], t[1], t[2]);
+                    } else {
+                        push(t[1], t[0], t[2]);
+                    }
+                }
+            }
+            _ => {
+                for t in indices.windows(2).skip(1) {
+                    push(indices[0], t[0], t[1]);
+                }
+            }
+        }
+    }
+    if any_normals {
+        data.normals = normals.into_iter().map(|n| n.unwrap_or([0.0; 3])).collect();
+    }
+    if uvs.iter().any(Option::is_some) {
+        data.uvs = uvs.into_iter().map(|t| t.unwrap_or([0.0; 2])).collect();
+    }
+    Ok(GltfMesh { name, data, slots })
+}
+
+fn material(m: &gltf::Material) -> PbrMaterial {
+    let pbr = m.pbr_metallic_roughness();
+    let strength = m.emissive_strength().unwrap_or(1.0);
+    let (base_color_image, base_color_texcoord) = match pbr.base_color_texture() {
+        Some(info) => (Some(info.texture().source().index()), info.tex_coord()),
+        None => (None, 0),
+    };
+    PbrMaterial {
+        name: m.name().map_or_else(
+            || format!("material {}", m.index().unwrap_or(0)),
+            str::to_string,
+        ),
+        base_color: pbr.base_color_factor(),
+        base_color_image,
+        base_color_texcoord,
+        metallic: pbr.metallic_factor(),
+        roughness: pbr.roughness_factor(),
+        emissive: m.emissive_factor().map(|e| e * strength),
+        transmission: m.transmission().map_or(0.0, |t| t.transmission_factor()),
+        ior: m.ior().unwrap_or(1.5),
+        double_sided: m.double_sided(),
+    }
+}
+
+/// A decoded glTF image as an `image` crate image (8- and 16-bit, and float).
+fn to_dynamic(d: gltf::image::Data) -> Option<::image::DynamicImage> {
+    use ::image::DynamicImage as D;
+    use gltf::image::Format as F;
+    let (w, h) = (d.width, d.height);
+    let u16s = |b: &[u8]| -> Vec<u16> {
+        b.chunks_exact(2)
+            .map(|c| u16::from_le_bytes([c[0], c[1]]))
+            .collect()
+    };
+    let f32s = |b: &[u8]| -> Vec<f32> {
+        b.chunks_exact(4)
+            .map(|c| f32::from_le_bytes([c[0], c[1], c[2], c[3]]))
+            .collect()
+    };
+    Some(match d.format {
+        F::R8 => D::ImageLuma8(::image::ImageBuffer::from_raw(w, h, d.pixels)?),
+        F::R8G8 => D::ImageLumaA8(::image::ImageBuffer::from_raw(w, h, d.pixels)?),
+        F::R8G8B8 => D::ImageRgb8(::image::ImageBuffer::from_raw(w, h, d.pixels)?),
+        F::R8G8B8A8 => D::ImageRgba8(::image::ImageBuffer::from_raw(w, h, d.pixels)?),
+        F::R16 => D::ImageLuma16(::image::ImageBuffer::from_raw(w, h, u16s(&d.pixels))?),
+        F::R16G16 => D::ImageLumaA16(::image::ImageBuffer::from_raw(w, h, u16s(&d.pixels))?),
+        F::R16G16B16 => D::ImageRgb16(::image::ImageBuffer::from_raw(w, h, u16s(&d.pixels))?),
+        F::R16G16B16A16 => D::ImageRgba16(::image::ImageBuffer::from_raw(w, h, u16s(&d.pixels))?),
+        F::R32G32B32FLOAT => D::ImageRgb32F(::image::ImageBuffer::from_raw(w, h, f32s(&d.pixels))?),
+        F::R32G32B32A32FLOAT => {
+            D::ImageRgba32F(::image::ImageBuffer::from_raw(w, h, f32s(&d.pixels))?)
+        }
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn matrices_multiply_column_major() {
+        // A translation by (1, 2, 3) after a scale by 2.
+        let t = [
+            [1.0, 0.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0, 0.0],
+            [0.0, 0.0, 1.0, 0.0],
+            [1.0, 2.0, 3.0, 1.0],
+        ];
+        let s = [
+            [2.0, 0.0, 0.0, 0.0],
+            [0.0, 2.0, 0.0, 0.0],
+            [0.0, 0.0, 2.0, 0.0],
+            [0.0, 0.0, 0.0, 1.0],
+        ];
+        let m = mul(&t, &s);
+        assert_eq!(m[0][0], 2.0);
+        assert_eq!(m[3], [1.0, 2.0, 3.0, 1.0]);
+        assert_eq!(mul(&IDENTITY, &m), m);
+    }
+}

@@ -1,0 +1,159 @@
+#!/usr/bin/env python3
+"""Writes the glTF test files beside this script, as Blender's exporter lays them out (one
+interleaved-free buffer of positions, normals, uvs and u16 indices; a node hierarchy; named
+materials; a PNG base-colour texture), and broken variants for the error tests.
+
+    python3 tests/data/gltf/make.py
+
+two-cubes.gltf (+ two-cubes.bin, checker.png): one cube mesh (side 2, centred on its
+origin) placed by two nodes under a parent moved to z = -3: `CubeA` at the parent's
+origin, `CubeB` moved 2 along x and scaled by 0.5. Its faces are `Red` (a dielectric,
+roughness 0.5) on the first three and `Checker` (a metal whose base colour is a 4 x 4
+checker of red and white texels) on the other three.
+two-cubes.glb: the same, in one binary file.
+The broken files (each with the same two-cubes.bin unless said):
+  bad-accessor.gltf   the POSITION accessor claims more vertices than its view holds
+  bad-index.gltf      an index points past the vertices (its own bad-index.bin)
+  missing-buffer.gltf the buffer's file does not exist
+  needs-draco.gltf    requires KHR_draco_mesh_compression
+  not-json.gltf       not JSON at all
+"""
+import json
+import os
+import struct
+import zlib
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+
+
+def cube():
+    """24 vertices (4 a face), normals, uvs (v = 0 at the top, glTF's), 36 indices."""
+    faces = [
+        ((1, 0, 0), (0, 0, -1), (0, 1, 0)),
+        ((-1, 0, 0), (0, 0, 1), (0, 1, 0)),
+        ((0, 1, 0), (1, 0, 0), (0, 0, -1)),
+        ((0, -1, 0), (1, 0, 0), (0, 0, 1)),
+        ((0, 0, 1), (1, 0, 0), (0, 1, 0)),
+        ((0, 0, -1), (-1, 0, 0), (0, 1, 0)),
+    ]
+    pos, nrm, uv, idx = [], [], [], []
+    for n, u, v in faces:
+        base = len(pos)
+        for su, sv in ((-1, -1), (1, -1), (1, 1), (-1, 1)):
+            pos.append(tuple(n[k] + su * u[k] + sv * v[k] for k in range(3)))
+            nrm.append(n)
+            uv.append(((su + 1) / 2, (1 - sv) / 2))
+        idx += [base, base + 1, base + 2, base, base + 2, base + 3]
+    return pos, nrm, uv, idx
+
+
+def png(w, h, rgb):
+    raw = b''.join(b'\x00' + bytes(c for px in rgb[y * w:(y + 1) * w] for c in px) for y in range(h))
+    chunk = lambda t, d: struct.pack('>I', len(d)) + t + d + struct.pack('>I', zlib.crc32(t + d))
+    return (b'\x89PNG\r\n\x1a\n' + chunk(b'IHDR', struct.pack('>IIBBBBB', w, h, 8, 2, 0, 0, 0))
+            + chunk(b'IDAT', zlib.compress(raw)) + chunk(b'IEND', b''))
+
+
+def build(bad_index=False):
+    pos, nrm, uv, idx = cube()
+    if bad_index:
+        idx[5] = 99
+    blobs = [
+        b''.join(struct.pack('<3f', *p) for p in pos),
+        b''.join(struct.pack('<3f', *n) for n in nrm),
+        b''.join(struct.pack('<2f', *t) for t in uv),
+        b''.join(struct.pack('<H', i) for i in idx[:18]),
+        b''.join(struct.pack('<H', i) for i in idx[18:]),
+    ]
+    views, data = [], b''
+    for k, b in enumerate(blobs):
+        views.append({'buffer': 0, 'byteOffset': len(data), 'byteLength': len(b),
+                      'target': 34963 if k >= 3 else 34962})
+        data += b + b'\x00' * (-len(b) % 4)
+    accessors = [
+        {'bufferView': 0, 'componentType': 5126, 'count': 24, 'type': 'VEC3',
+         'min': [-1, -1, -1], 'max': [1, 1, 1]},
+        {'bufferView': 1, 'componentType': 5126, 'count': 24, 'type': 'VEC3'},
+        {'bufferView': 2, 'componentType': 5126, 'count': 24, 'type': 'VEC2'},
+        {'bufferView': 3, 'componentType': 5123, 'count': 18, 'type': 'SCALAR'},
+        {'bufferView': 4, 'componentType': 5123, 'count': 18, 'type': 'SCALAR'},
+    ]
+    attrs = {'POSITION': 0, 'NORMAL': 1, 'TEXCOORD_0': 2}
+    doc = {
+        'asset': {'generator': 'Khronos glTF Blender I/O v4.2.70', 'version': '2.0'},
+        'scene': 0,
+        'scenes': [{'name': 'Scene', 'nodes': [0]}],
+        'nodes': [
+            {'name': 'Parent', 'translation': [0, 0, -3], 'children': [1, 2]},
+            {'name': 'CubeA', 'mesh': 0},
+            {'name': 'CubeB', 'mesh': 0, 'translation': [2, 0, 0], 'scale': [0.5, 0.5, 0.5]},
+        ],
+        'meshes': [{'name': 'Cube', 'primitives': [
+            {'attributes': attrs, 'indices': 3, 'material': 0},
+            {'attributes': attrs, 'indices': 4, 'material': 1},
+        ]}],
+        'materials': [
+            {'name': 'Red', 'pbrMetallicRoughness': {
+                'baseColorFactor': [0.8, 0.05, 0.05, 1], 'metallicFactor': 0, 'roughnessFactor': 0.5}},
+            {'name': 'Checker', 'pbrMetallicRoughness': {
+                'baseColorTexture': {'index': 0}, 'metallicFactor': 1, 'roughnessFactor': 0.3}},
+        ],
+        'textures': [{'sampler': 0, 'source': 0}],
+        'samplers': [{'magFilter': 9729, 'minFilter': 9987}],
+        'images': [{'name': 'checker', 'uri': 'checker.png', 'mimeType': 'image/png'}],
+        'accessors': accessors,
+        'bufferViews': views,
+        'buffers': [{'byteLength': len(data), 'uri': 'two-cubes.bin'}],
+    }
+    return doc, data
+
+
+def write(name, doc):
+    with open(os.path.join(HERE, name), 'w') as f:
+        json.dump(doc, f, indent=1)
+        f.write('\n')
+
+
+def main():
+    red, white = (200, 20, 20), (240, 240, 240)
+    with open(os.path.join(HERE, 'checker.png'), 'wb') as f:
+        f.write(png(4, 4, [red if (x + y) % 2 == 0 else white for y in range(4) for x in range(4)]))
+    doc, data = build()
+    with open(os.path.join(HERE, 'two-cubes.bin'), 'wb') as f:
+        f.write(data)
+    write('two-cubes.gltf', doc)
+
+    # The GLB: the JSON chunk (the image now in a buffer view too) and the BIN chunk.
+    with open(os.path.join(HERE, 'checker.png'), 'rb') as f:
+        image = f.read()
+    glb = json.loads(json.dumps(doc))
+    glb['bufferViews'].append({'buffer': 0, 'byteOffset': len(data), 'byteLength': len(image)})
+    glb['images'] = [{'name': 'checker', 'bufferView': 5, 'mimeType': 'image/png'}]
+    blob = data + image + b'\x00' * (-len(image) % 4)
+    glb['buffers'] = [{'byteLength': len(blob)}]
+    js = json.dumps(glb).encode()
+    js += b' ' * (-len(js) % 4)
+    body = struct.pack('<I4s', len(js), b'JSON') + js + struct.pack('<I4s', len(blob), b'BIN\x00') + blob
+    with open(os.path.join(HERE, 'two-cubes.glb'), 'wb') as f:
+        f.write(struct.pack('<4sII', b'glTF', 2, 12 + len(body)) + body)
+
+    bad = json.loads(json.dumps(doc))
+    bad['accessors'][0]['count'] = 2400
+    write('bad-accessor.gltf', bad)
+    bad_doc, bad_data = build(bad_index=True)
+    bad_doc['buffers'][0]['uri'] = 'bad-index.bin'
+    with open(os.path.join(HERE, 'bad-index.bin'), 'wb') as f:
+        f.write(bad_data)
+    write('bad-index.gltf', bad_doc)
+    missing = json.loads(json.dumps(doc))
+    missing['buffers'][0]['uri'] = 'gone.bin'
+    write('missing-buffer.gltf', missing)
+    draco = json.loads(json.dumps(doc))
+    draco['extensionsUsed'] = draco['extensionsRequired'] = ['KHR_draco_mesh_compression']
+    write('needs-draco.gltf', draco)
+    with open(os.path.join(HERE, 'not-json.gltf'), 'w') as f:
+        f.write('solid cube\n  facet normal 0 0 1\n')
+
+
+if __name__ == '__main__':
+    main()

@@ -1,0 +1,150 @@
+//! glTF files placed by a scene (tests/data/gltf, written by its make.py as Blender's
+//! exporter lays files out): each node that shows a mesh becomes an object, the mesh stored
+//! once; the node hierarchy's transforms place them; materials and their base-colour images
+//! come through with glTF's texture orientation; a .glb is the same scene as the .gltf; a
+//! scene's transform applies after the file's.
+
+use super::repo;
+use snell::math::{Color, Ray, Vec3A};
+use snell::render::render;
+use snell::scene::{Format, Scene, Skip, load_str};
+use std::sync::Arc;
+
+fn scene_with(file: &str, extra: &str) -> Scene {
+    let dir = repo("tests/data/gltf");
+    let text = format!(
+        "[image]\nwidth = 24\nheight = 16\nsamples = 1\n\
+         [camera]\nposition = [0, 0, 6]\nlook_at = [0, 0, -3]\n\
+         [[lights]]\ntype = \"point\"\nposition = [0, 4, 6]\n\
+         [[objects]]\ntype = \"mesh\"\nfile = \"{file}\"\n{extra}\n"
+    );
+    load_str(&text, &dir.join("t.toml"), &dir, Format::Toml).unwrap_or_else(|e| panic!("{e}"))
+}
+
+fn hit(scene: &Scene, from: [f32; 3], dir: [f32; 3]) -> snell::scene::Hit {
+    let ray = Ray::new(Vec3A::from(from), Vec3A::from(dir).normalize());
+    scene
+        .closest_hit_with_uv(&ray, f32::INFINITY, Skip::NONE)
+        .expect("a hit")
+}
+
+#[test]
+fn each_node_places_the_one_mesh_where_the_hierarchy_says() {
+    let scene = scene_with("two-cubes.gltf", "");
+    assert_eq!(scene.objects.len(), 2);
+    let names: Vec<&str> = scene.objects.iter().map(|o| o.name.as_str()).collect();
+    assert_eq!(names, ["mesh #0/CubeA", "mesh #0/CubeB"]);
+    match (&scene.objects[0].shape, &scene.objects[1].shape) {
+        (snell::geometry::Shape::Mesh(a), snell::geometry::Shape::Mesh(b)) => {
+            assert!(Arc::ptr_eq(a, b), "the mesh is stored once")
+        }
+        _ => panic!("not meshes"),
+    }
+    // CubeA: the cube (side 2) at the parent's z = -3; CubeB: 2 along x, half the size.
+    let bounds = |i: usize| {
+        let b = scene.objects[i].world_bounds.unwrap();
+        (b.min.to_array(), b.max.to_array())
+    };
+    let close = |a: [f32; 3], b: [f32; 3]| (Vec3A::from(a) - Vec3A::from(b)).length() < 1e-5;
+    let (lo, hi) = bounds(0);
+    assert!(
+        close(lo, [-1.0, -1.0, -4.0]) && close(hi, [1.0, 1.0, -2.0]),
+        "{lo:?} {hi:?}"
+    );
+    let (lo, hi) = bounds(1);
+    assert!(
+        close(lo, [1.5, -0.5, -3.5]) && close(hi, [2.5, 0.5, -2.5]),
+        "{lo:?} {hi:?}"
+    );
+    // Rays meet them where they are: CubeA's front face at z = -2, CubeB's at -2.5.
+    let h = hit(&scene, [0.0, 0.0, 5.0], [0.0, 0.0, -1.0]);
+    assert!(
+        (h.t - 7.0).abs() < 1e-4 && h.object == 0,
+        "{} {}",
+        h.t,
+        h.object
+    );
+    assert!((h.shading_normal - Vec3A::Z).length() < 1e-5);
+    let h = hit(&scene, [2.0, 0.0, 5.0], [0.0, 0.0, -1.0]);
+    assert!(
+        (h.t - 7.5).abs() < 1e-4 && h.object == 1,
+        "{} {}",
+        h.t,
+        h.object
+    );
+    // The file's materials, by name, on their faces: the front face is `Checker`, the top
+    // face `Red`.
+    let material = |h: &snell::scene::Hit| scene.material_names[h.material].clone();
+    assert_eq!(
+        material(&hit(&scene, [0.0, 0.0, 5.0], [0.0, 0.0, -1.0])),
+        "two-cubes.gltf:Checker"
+    );
+    assert_eq!(
+        material(&hit(&scene, [0.0, 5.0, -3.0], [0.0, -1.0, 0.0])),
+        "two-cubes.gltf:Red"
+    );
+}
+
+/// The checker's top-left texel (red) shows at the front face's top-left: glTF puts v = 0
+/// at the top of the image, as snell does (read upside down, the texel there is white).
+#[test]
+fn base_colour_images_face_the_right_way() {
+    let scene = scene_with("two-cubes.gltf", "");
+    // uv (1/8, 1/8), the centre of texel (0, 0), is (-0.75, 0.75) on the unit face.
+    let h = hit(&scene, [-0.75, 0.75, 5.0], [0.0, 0.0, -1.0]);
+    let m = scene.material_at(&h);
+    let c = scene.textures[m.texture].eval(&h.tex);
+    let red = Color::new(0.578, 0.007, 0.007);
+    assert!((c - red).abs().max_element() < 0.01, "{c}");
+    // The texel to its right (white) at uv (3/8, 1/8).
+    let h = hit(&scene, [-0.25, 0.75, 5.0], [0.0, 0.0, -1.0]);
+    let c = scene.textures[scene.material_at(&h).texture].eval(&h.tex);
+    assert!(c.min_element() > 0.8, "{c}");
+}
+
+/// The binary container holds the same scene: the same picture, byte for byte.
+#[test]
+fn a_glb_is_the_same_scene_as_the_gltf() {
+    let a = render(
+        &scene_with("two-cubes.gltf", ""),
+        &snell::integrator::Whitted,
+        Some(1),
+        &|_| {},
+    )
+    .unwrap()
+    .image;
+    let b = render(
+        &scene_with("two-cubes.glb", ""),
+        &snell::integrator::Whitted,
+        Some(1),
+        &|_| {},
+    )
+    .unwrap()
+    .image;
+    assert_eq!(a, b);
+    assert!(
+        a.pixels.iter().any(|p| p.max_element() > 0.05),
+        "the cubes show"
+    );
+}
+
+/// An object's transform moves the whole file, after the nodes' own placement; a material
+/// given by the object replaces the file's.
+#[test]
+fn the_objects_transform_and_material_apply_to_every_part() {
+    let scene = scene_with(
+        "two-cubes.gltf",
+        "transform = { translate = [0, 10, 0] }\nmaterial = \"grey\"\n\
+         [materials.grey]\ncolor = 0.5",
+    );
+    let b = scene.objects[1].world_bounds.unwrap();
+    assert!(
+        (b.min - Vec3A::new(1.5, 9.5, -3.5)).length() < 1e-5,
+        "{}",
+        b.min
+    );
+    for o in &scene.objects {
+        assert!(o.slot_materials.is_empty());
+        assert_eq!(scene.material_names[o.material], "grey");
+    }
+}
