@@ -11,6 +11,7 @@ pub mod mesh;
 mod plane;
 mod rect;
 mod sphere;
+mod torus;
 mod triangle;
 
 pub use cone::Cone;
@@ -22,6 +23,7 @@ pub use mesh::Mesh;
 pub use plane::Plane;
 pub use rect::Rect;
 pub use sphere::Sphere;
+pub use torus::Torus;
 pub use triangle::Triangle;
 
 #[cfg(test)]
@@ -108,6 +110,8 @@ pub enum Shape {
     Cylinder(Cylinder),
     /// A finite cone, capped or open at its base.
     Cone(Cone),
+    /// A ring torus.
+    Torus(Torus),
     /// A flat disk.
     Disk(Disk),
     /// A single triangle.
@@ -127,6 +131,7 @@ impl Shape {
             Shape::Cuboid(s) => s.intersect(ray, t_max),
             Shape::Cylinder(s) => s.intersect(ray, t_max),
             Shape::Cone(s) => s.intersect(ray, t_max),
+            Shape::Torus(s) => s.intersect(ray, t_max),
             Shape::Disk(s) => s.intersect(ray, t_max),
             Shape::Triangle(s) => s.intersect(ray, t_max),
             Shape::Mesh(s) => s.intersect(ray, t_max),
@@ -171,6 +176,7 @@ impl Shape {
             Shape::Cuboid(s) => s.intersect(ray, t_max),
             Shape::Cylinder(s) => s.intersect(ray, t_max),
             Shape::Cone(s) => s.intersect(ray, t_max),
+            Shape::Torus(s) => s.intersect(ray, t_max),
             Shape::Disk(s) => s.intersect(ray, t_max),
             Shape::Triangle(s) => s.intersect(ray, t_max),
             Shape::Mesh(_) => None,
@@ -197,6 +203,7 @@ impl Shape {
             Shape::Cuboid(s) => s.surface(p, part),
             Shape::Cylinder(s) => s.surface(p, part, want_uv),
             Shape::Cone(s) => s.surface(p, part, want_uv),
+            Shape::Torus(s) => s.surface(p, want_uv),
             Shape::Disk(s) => s.surface(p),
             Shape::Triangle(s) => s.surface(p),
             Shape::Mesh(s) => s.surface(hit),
@@ -212,6 +219,7 @@ impl Shape {
             Shape::Cuboid(s) => Some(s.bounds()),
             Shape::Cylinder(s) => Some(s.bounds()),
             Shape::Cone(s) => Some(s.bounds()),
+            Shape::Torus(s) => Some(s.bounds()),
             Shape::Disk(s) => Some(s.bounds()),
             Shape::Triangle(s) => Some(s.bounds()),
             Shape::Mesh(s) => Some(s.bounds()),
@@ -226,6 +234,7 @@ impl Shape {
             Shape::Cuboid(s) => p.cmpgt(s.min).all() && p.cmplt(s.max).all(),
             Shape::Cylinder(s) => s.contains(p),
             Shape::Cone(s) => s.contains(p),
+            Shape::Torus(s) => s.contains(p),
             _ => false,
         }
     }
@@ -241,7 +250,7 @@ impl Shape {
             Shape::Sphere(_) | Shape::Cuboid(_) | Shape::Cylinder(_) | Shape::Cone(_) => {
                 Leaving::Outside
             }
-            Shape::Mesh(_) => Leaving::MayReturn,
+            Shape::Mesh(_) | Shape::Torus(_) => Leaving::MayReturn,
         }
     }
 
@@ -254,6 +263,7 @@ impl Shape {
             Shape::Cuboid(_) => "box",
             Shape::Cylinder(_) => "cylinder",
             Shape::Cone(_) => "cone",
+            Shape::Torus(_) => "torus",
             Shape::Disk(_) => "disk",
             Shape::Triangle(_) => "triangle",
             Shape::Mesh(_) => "mesh",
@@ -518,6 +528,16 @@ mod tests {
             Shape::Mesh(std::sync::Arc::new(mesh)).leaving(),
             Leaving::MayReturn
         );
+        // Nor does a torus: a ray leaving its outside may cross the hole to the far side.
+        let torus = Shape::Torus(Torus::new(Vec3A::ZERO, Vec3A::Y, 2.0, 0.5));
+        assert_eq!(torus.leaving(), Leaving::MayReturn);
+        let h = torus
+            .intersect(
+                &Ray::new(Vec3A::new(-1.5, 0.0, 0.0), Vec3A::X),
+                f32::INFINITY,
+            )
+            .unwrap();
+        assert!((h.t - 3.0).abs() < 1e-5, "{}", h.t);
     }
 
     #[test]

@@ -10,6 +10,7 @@ pub mod distribution;
 pub mod distribution2d;
 mod frame;
 mod offset;
+pub mod poly;
 mod rng;
 pub mod sampling;
 pub mod spectrum;

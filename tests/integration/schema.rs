@@ -480,6 +480,13 @@ radius = 0.5
 height = 1
 capped = true
 [[objects]]
+type = "torus"
+material = "all"
+center = [0, 0, 0]
+axis = [0, 1, 0]
+major_radius = 1
+minor_radius = 0.25
+[[objects]]
 type = "disk"
 material = "all"
 uv_scale = 4

@@ -7,7 +7,7 @@ use super::meshes::{LoadedMesh, MeshCache, Palette};
 use super::{BuildStats, Fog, IntegratorSettings, Limits, Object, RenderSettings, Scene};
 use crate::accel::Bvh;
 use crate::film::Filter;
-use crate::geometry::{Cone, Cuboid, Cylinder, Disk, Plane, Rect, Shape, Sphere, Triangle};
+use crate::geometry::{Cone, Cuboid, Cylinder, Disk, Plane, Rect, Shape, Sphere, Torus, Triangle};
 use crate::light::{Light, LightSampler};
 use crate::math::{Color, Frame, Transform, Vec3, Vec3A};
 use crate::sampler::SamplerKind;
@@ -1204,6 +1204,23 @@ impl Builder<'_> {
                 self.positive(s.height, &path.key("height")),
                 s.capped,
             )),
+            ObjectDef::Torus(s) => {
+                let major = self.positive(s.major_radius, &path.key("major_radius"));
+                let minor = self.positive(s.minor_radius, &path.key("minor_radius"));
+                if minor >= major {
+                    self.error_help(
+                        path.key("minor_radius"),
+                        format!("must be less than major_radius ({major}), not {minor}"),
+                        "a tube as wide as its ring closes the hole (a horn or spindle torus), which snell does not draw",
+                    );
+                }
+                Shape::Torus(Torus::new(
+                    self.point(s.center, &path.key("center")),
+                    self.direction(s.axis, &path.key("axis")),
+                    major,
+                    minor,
+                ))
+            }
             ObjectDef::Disk(s) => Shape::Disk(Disk::new(
                 self.point(s.center, &path.key("center")),
                 self.direction(s.normal, &path.key("normal")),

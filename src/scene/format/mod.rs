@@ -509,6 +509,18 @@ object_defs! {
         /// Closed base.
         capped: bool = "yes",
     }
+    /// A ring torus: a tube of radius `minor_radius` around a circle of radius
+    /// `major_radius`.
+    Torus(TorusDef) {
+        /// Centre of the ring.
+        center: V3 = "origin",
+        /// Axis direction, perpendicular to the ring.
+        axis: V3 = "y_axis",
+        /// Radius of the ring, centre to the middle of the tube.
+        major_radius: f32,
+        /// Radius of the tube, less than `major_radius`.
+        minor_radius: f32,
+    }
     /// A disk.
     Disk(DiskDef) {
         /// Centre.
