@@ -4,6 +4,7 @@
 //! length (rays carried in by a transform).
 
 mod cone;
+mod csg;
 mod cuboid;
 mod cylinder;
 mod disk;
@@ -15,6 +16,7 @@ mod torus;
 mod triangle;
 
 pub use cone::Cone;
+pub use csg::{Csg, CsgLeaf, CsgNode, CsgOp};
 pub use cuboid::Cuboid;
 pub use cylinder::Cylinder;
 pub(crate) use cylinder::angle_u;
@@ -118,6 +120,8 @@ pub enum Shape {
     Triangle(Triangle),
     /// A triangle mesh, shared by every object that places it.
     Mesh(std::sync::Arc<Mesh>),
+    /// A union, intersection or difference of solids, shared like a mesh.
+    Csg(std::sync::Arc<Csg>),
 }
 
 impl Shape {
@@ -132,6 +136,7 @@ impl Shape {
             Shape::Cylinder(s) => s.intersect(ray, t_max),
             Shape::Cone(s) => s.intersect(ray, t_max),
             Shape::Torus(s) => s.intersect(ray, t_max),
+            Shape::Csg(s) => s.intersect(ray, t_max),
             Shape::Disk(s) => s.intersect(ray, t_max),
             Shape::Triangle(s) => s.intersect(ray, t_max),
             Shape::Mesh(s) => s.intersect(ray, t_max),
@@ -177,6 +182,7 @@ impl Shape {
             Shape::Cylinder(s) => s.intersect(ray, t_max),
             Shape::Cone(s) => s.intersect(ray, t_max),
             Shape::Torus(s) => s.intersect(ray, t_max),
+            Shape::Csg(s) => s.intersect(ray, t_max),
             Shape::Disk(s) => s.intersect(ray, t_max),
             Shape::Triangle(s) => s.intersect(ray, t_max),
             Shape::Mesh(_) => None,
@@ -204,6 +210,7 @@ impl Shape {
             Shape::Cylinder(s) => s.surface(p, part, want_uv),
             Shape::Cone(s) => s.surface(p, part, want_uv),
             Shape::Torus(s) => s.surface(p, want_uv),
+            Shape::Csg(s) => s.surface(p, hit, want_uv),
             Shape::Disk(s) => s.surface(p),
             Shape::Triangle(s) => s.surface(p),
             Shape::Mesh(s) => s.surface(hit),
@@ -220,6 +227,7 @@ impl Shape {
             Shape::Cylinder(s) => Some(s.bounds()),
             Shape::Cone(s) => Some(s.bounds()),
             Shape::Torus(s) => Some(s.bounds()),
+            Shape::Csg(s) => Some(s.bounds()),
             Shape::Disk(s) => Some(s.bounds()),
             Shape::Triangle(s) => Some(s.bounds()),
             Shape::Mesh(s) => Some(s.bounds()),
@@ -235,6 +243,7 @@ impl Shape {
             Shape::Cylinder(s) => s.contains(p),
             Shape::Cone(s) => s.contains(p),
             Shape::Torus(s) => s.contains(p),
+            Shape::Csg(s) => s.contains(p),
             _ => false,
         }
     }
@@ -250,7 +259,7 @@ impl Shape {
             Shape::Sphere(_) | Shape::Cuboid(_) | Shape::Cylinder(_) | Shape::Cone(_) => {
                 Leaving::Outside
             }
-            Shape::Mesh(_) | Shape::Torus(_) => Leaving::MayReturn,
+            Shape::Mesh(_) | Shape::Torus(_) | Shape::Csg(_) => Leaving::MayReturn,
         }
     }
 
@@ -264,6 +273,7 @@ impl Shape {
             Shape::Cylinder(_) => "cylinder",
             Shape::Cone(_) => "cone",
             Shape::Torus(_) => "torus",
+            Shape::Csg(_) => "csg",
             Shape::Disk(_) => "disk",
             Shape::Triangle(_) => "triangle",
             Shape::Mesh(_) => "mesh",

@@ -246,6 +246,12 @@ impl Object {
                 .get(m.slot(hit.prim) as usize)
                 .copied()
                 .unwrap_or(self.material),
+            // A combination's solids may each have their own: `prim` names the solid.
+            Shape::Csg(_) if !self.slot_materials.is_empty() => self
+                .slot_materials
+                .get(hit.prim as usize)
+                .copied()
+                .unwrap_or(self.material),
             _ => self.material,
         }
     }

@@ -5,6 +5,7 @@ mod aov;
 mod bad;
 mod camera;
 mod cli;
+mod csg;
 mod docs;
 mod environment;
 mod explain;

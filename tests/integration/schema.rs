@@ -480,6 +480,20 @@ radius = 0.5
 height = 1
 capped = true
 [[objects]]
+type = "csg"
+material = "all"
+operation = "difference"
+shapes = [
+  { type = "csg", operation = "intersection", shapes = [
+    { type = "box", min = [-1, -1, -1], max = [1, 1, 1] },
+    { type = "sphere", radius = 1.5 },
+  ] },
+  { type = "csg", operation = "union", shapes = [
+    { type = "sphere", radius = 0.2, center = [0, 1, 0] },
+    { type = "sphere", radius = 0.2, center = [0, -1, 0] },
+  ] },
+]
+[[objects]]
 type = "torus"
 material = "all"
 center = [0, 0, 0]

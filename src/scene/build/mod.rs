@@ -18,6 +18,7 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 mod camera;
+mod csg;
 mod emitters;
 mod environment;
 mod material;
@@ -559,6 +560,13 @@ impl Builder<'_> {
                     if obj.slot_materials.is_empty() {
                         used_materials[obj.material] = true;
                     }
+                    // A combination's solids name scene materials (a mesh's slots are the
+                    // file's own, after them).
+                    if matches!(obj.shape, Shape::Csg(_)) {
+                        for &m in &obj.slot_materials {
+                            used_materials[m] = true;
+                        }
+                    }
                     objects.push(obj);
                 }
             }
@@ -1090,9 +1098,24 @@ impl Builder<'_> {
             ),
             _ => (transform, None),
         };
-        let shape = match mesh {
-            Some(m) => Shape::Mesh(m.mesh),
-            None => self.shape(d, path)?,
+        let shape = match (mesh, d) {
+            (Some(m), _) => Shape::Mesh(m.mesh),
+            (None, ObjectDef::Csg(c)) => {
+                let (csg, leaf_materials) = self.csg(c, path)?;
+                // Solids with a material of their own: every solid gets a slot.
+                if leaf_materials.iter().any(Option::is_some) {
+                    let mut slots = vec![];
+                    for m in leaf_materials {
+                        slots.push(match m {
+                            None => material?,
+                            Some((name, at)) => self.material_named(&name, &at, material_names)?,
+                        });
+                    }
+                    slot_materials = slots;
+                }
+                Shape::Csg(std::sync::Arc::new(csg))
+            }
+            (None, _) => self.shape(d, path)?,
         };
         let name = name
             .clone()
@@ -1132,6 +1155,25 @@ impl Builder<'_> {
             slot_materials,
             world_bounds,
         })
+    }
+
+    /// The index of the material `name`, or an error at `at` suggesting one.
+    fn material_named(
+        &mut self,
+        name: &str,
+        at: &DocPath,
+        material_names: &[String],
+    ) -> Option<usize> {
+        if let Some(i) = material_names.iter().position(|m| m == name) {
+            return Some(i);
+        }
+        let help = match did_you_mean(name, material_names.iter().map(String::as_str)) {
+            Some(s) => format!("did you mean `{s}`?"),
+            None if material_names.is_empty() => "define it under [materials.NAME]".to_string(),
+            None => format!("defined materials: {}", material_names.join(", ")),
+        };
+        self.error_help(at.clone(), format!("no material named `{name}`"), help);
+        None
     }
 
     fn transform(&mut self, d: &TransformDef, path: &DocPath) -> Option<Transform> {
@@ -1204,6 +1246,8 @@ impl Builder<'_> {
                 self.positive(s.height, &path.key("height")),
                 s.capped,
             )),
+            // (An object places a combination with its solids' materials: see `object`.)
+            ObjectDef::Csg(c) => Shape::Csg(std::sync::Arc::new(self.csg(c, path)?.0)),
             ObjectDef::Torus(s) => {
                 let major = self.positive(s.major_radius, &path.key("major_radius"));
                 let minor = self.positive(s.minor_radius, &path.key("minor_radius"));

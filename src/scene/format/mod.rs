@@ -405,6 +405,18 @@ pub struct TransformDef {
     pub translate: V3,
 }
 
+/// How a `csg` object's shapes combine.
+#[derive(Clone, Copy, Debug, Deserialize, JsonSchema, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub enum CsgOpDef {
+    /// Inside any of them.
+    Union,
+    /// Inside all of them.
+    Intersection,
+    /// Inside the first and none of the others.
+    Difference,
+}
+
 macro_rules! object_defs {
     ($( $(#[$doc:meta])* $variant:ident ($name:ident) { $( $(#[$fdoc:meta])* $field:ident : $ty:ty $(= $default:literal)? ),* $(,)? } )*) => {
         /// `[[objects]]`: a shape with a material and an optional transform.
@@ -520,6 +532,15 @@ object_defs! {
         major_radius: f32,
         /// Radius of the tube, less than `major_radius`.
         minor_radius: f32,
+    }
+    /// Constructive solid geometry: solids (spheres, boxes, capped cylinders and cones,
+    /// tori, and `csg` objects) combined. Each shape may have its own `transform` (within
+    /// the combination) and `material` (default: the combination's).
+    Csg(CsgDef) {
+        /// `union`, `intersection`, or `difference` (the first minus the others).
+        operation: CsgOpDef,
+        /// The solids, at least two.
+        shapes: Vec<ObjectDef>,
     }
     /// A disk.
     Disk(DiskDef) {
