@@ -125,6 +125,20 @@ pub fn load(path: &Path) -> Result<GltfScene, MeshError> {
 /// A glTF file's `bytes` (JSON or GLB) as [`load`] reads them, as if read from `path` (whose
 /// folder its buffer and image files are found in).
 pub fn parse(bytes: &[u8], path: &Path) -> Result<GltfScene, MeshError> {
+    // The `gltf` crate subtracts the 12-byte header from a GLB's stated length before it
+    // checks it (an overflow, and a panic where overflow is checked: found by the fuzz
+    // target).
+    if let Some(len) = bytes.strip_prefix(b"glTF").and_then(|rest| rest.get(4..8)) {
+        let len = u32::from_le_bytes([len[0], len[1], len[2], len[3]]);
+        if len < 12 {
+            return Err(error(
+                path,
+                format!(
+                    "its GLB header gives a length of {len} bytes, less than the header itself"
+                ),
+            ));
+        }
+    }
     let invalid = |e: gltf::Error| error(path, format!("not a valid glTF 2.0 file: {e}"));
     // The extensions it requires first (their names say more than a failed validation),
     // then the whole document.
@@ -138,14 +152,16 @@ pub fn parse(bytes: &[u8], path: &Path) -> Result<GltfScene, MeshError> {
             ));
         }
     }
-    let document = gltf::Document::from_json(document.into_json()).map_err(invalid)?;
+    let root = document.into_json();
+    check_before_validation(&root).map_err(|m| error(path, m))?;
+    let document = gltf::Document::from_json(root).map_err(invalid)?;
     let base = path.parent().unwrap_or(Path::new("."));
     let mut out = GltfScene::default();
     for b in document.buffers() {
         if let gltf::buffer::Source::Uri(uri) = b.source()
             && !uri.starts_with("data:")
         {
-            let file = base.join(uri);
+            let file = base.join(decode_uri(uri).unwrap_or_default());
             out.files.push(file.clone());
             if !file.is_file() {
                 return Err(error(
@@ -219,7 +235,8 @@ pub fn parse(bytes: &[u8], path: &Path) -> Result<GltfScene, MeshError> {
         if let gltf::image::Source::Uri { uri, .. } = image.source()
             && !uri.starts_with("data:")
         {
-            out.files.push(base.join(uri));
+            out.files
+                .push(base.join(decode_uri(uri).unwrap_or_default()));
         }
         let data = gltf::image::Data::from_source(image.source(), Some(base), &buffers)
             .map_err(|e| error(path, format!("cannot read image {}: {e}", image.index())))?;
@@ -252,6 +269,71 @@ fn mul(a: &[[f32; 4]; 4], b: &[[f32; 4]; 4]) -> [[f32; 4]; 4] {
         }
     }
     out
+}
+
+/// What the `gltf` crate (1.4.1) takes for granted and panics on where a file breaks it,
+/// each found by the fuzz target: every primitive's attributes name accessors that exist
+/// (its validation reads a primitive's POSITION accessor before checking that); an image
+/// in a buffer view has a MIME type, and one not in a buffer view has a URI; URIs decode
+/// from their %-escapes to UTF-8.
+fn check_before_validation(root: &gltf::json::Root) -> Result<(), String> {
+    for (i, image) in root.images.iter().enumerate() {
+        if image.buffer_view.is_some() && image.mime_type.is_none() {
+            return Err(format!("image {i} is in a buffer view but has no mimeType"));
+        }
+        if image.buffer_view.is_none() && image.uri.is_none() {
+            return Err(format!("image {i} has neither a uri nor a buffer view"));
+        }
+    }
+    let uris = root
+        .images
+        .iter()
+        .filter_map(|i| i.uri.as_deref())
+        .chain(root.buffers.iter().filter_map(|b| b.uri.as_deref()));
+    for uri in uris {
+        if !uri.starts_with("data:") && decode_uri(uri).is_none() {
+            return Err(format!("the uri `{uri}` does not decode to UTF-8"));
+        }
+    }
+    let n = root.accessors.len();
+    for (m, mesh) in root.meshes.iter().enumerate() {
+        for (p, prim) in mesh.primitives.iter().enumerate() {
+            let indices = prim
+                .indices
+                .iter()
+                .map(|i| ("indices".to_string(), i.value()));
+            let attributes = prim.attributes.iter().map(|(k, i)| match k {
+                gltf::json::validation::Checked::Valid(s) => (s.to_string(), i.value()),
+                gltf::json::validation::Checked::Invalid => ("an attribute".into(), i.value()),
+            });
+            for (name, i) in attributes.chain(indices) {
+                if i >= n {
+                    return Err(format!(
+                        "mesh {m}, primitive {p}: {name} names accessor {i}, but there are {n}"
+                    ));
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
+/// A relative URI's path: its %-escapes decoded, if they make UTF-8.
+fn decode_uri(uri: &str) -> Option<String> {
+    let b = uri.as_bytes();
+    let mut out = Vec::with_capacity(b.len());
+    let mut i = 0;
+    while i < b.len() {
+        if b[i] == b'%' {
+            let hex = std::str::from_utf8(b.get(i + 1..i + 3)?).ok()?;
+            out.push(u8::from_str_radix(hex, 16).ok()?);
+            i += 3;
+        } else {
+            out.push(b[i]);
+            i += 1;
+        }
+    }
+    String::from_utf8(out).ok()
 }
 
 /// Every buffer view within its buffer, and every accessor within its view (or, without
@@ -334,6 +416,7 @@ fn read_mesh(
             ));
             continue;
         }
+        check_layouts(&prim).map_err(|m| format!("{name}: primitive {p}: {m}"))?;
         let reader = prim.reader(|b| buffers.get(b.index()).map(|d| &d.0[..]));
         let Some(positions) = reader.read_positions() else {
             return Err(format!("{name}: primitive {p} has no POSITION"));
@@ -407,6 +490,47 @@ fn read_mesh(
     Ok(GltfMesh { name, data, slots })
 }
 
+/// Each attribute snell reads is laid out as glTF requires (positions and normals three
+/// floats, uvs two floats or normalized bytes or shorts, indices unsigned scalars): the
+/// `gltf` crate's readers assume it (and assert it where debug assertions are on).
+fn check_layouts(prim: &gltf::Primitive) -> Result<(), String> {
+    use gltf::accessor::{DataType as T, Dimensions as D};
+    use gltf::mesh::Semantic as S;
+    let checks: [(S, &str, D, &[T]); 3] = [
+        (S::Positions, "POSITION", D::Vec3, &[T::F32]),
+        (S::Normals, "NORMAL", D::Vec3, &[T::F32]),
+        (
+            S::TexCoords(0),
+            "TEXCOORD_0",
+            D::Vec2,
+            &[T::F32, T::U8, T::U16],
+        ),
+    ];
+    for (semantic, name, dims, types) in checks {
+        if let Some(a) = prim.get(&semantic)
+            && (a.dimensions() != dims || !types.contains(&a.data_type()))
+        {
+            return Err(format!(
+                "its {name} accessor {} is {:?} of {:?}, not {dims:?} of {types:?}",
+                a.index(),
+                a.dimensions(),
+                a.data_type()
+            ));
+        }
+    }
+    if let Some(a) = prim.indices()
+        && (a.dimensions() != D::Scalar || !matches!(a.data_type(), T::U8 | T::U16 | T::U32))
+    {
+        return Err(format!(
+            "its indices accessor {} is {:?} of {:?}, not unsigned scalars",
+            a.index(),
+            a.dimensions(),
+            a.data_type()
+        ));
+    }
+    Ok(())
+}
+
 fn material(m: &gltf::Material) -> PbrMaterial {
     let pbr = m.pbr_metallic_roughness();
     let strength = m.emissive_strength().unwrap_or(1.0);
@@ -465,6 +589,17 @@ fn to_dynamic(d: gltf::image::Data) -> Option<::image::DynamicImage> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn uris_decode_their_escapes() {
+        assert_eq!(
+            decode_uri("my%20model.bin").as_deref(),
+            Some("my model.bin")
+        );
+        assert_eq!(decode_uri("plain.png").as_deref(), Some("plain.png"));
+        assert_eq!(decode_uri("%FF.bin"), None);
+        assert_eq!(decode_uri("cut%2"), None);
+    }
 
     #[test]
     fn matrices_multiply_column_major() {

@@ -14,9 +14,12 @@ two-cubes.glb: the same, in one binary file.
 The broken files (each with the same two-cubes.bin unless said):
   bad-accessor.gltf   the POSITION accessor claims more vertices than its view holds
   bad-index.gltf      an index points past the vertices (its own bad-index.bin)
+  bad-position.gltf   a primitive's POSITION names an accessor that does not exist
+  bad-uv-type.gltf    a primitive's TEXCOORD_0 names the VEC3 positions
   missing-buffer.gltf the buffer's file does not exist
   needs-draco.gltf    requires KHR_draco_mesh_compression
   not-json.gltf       not JSON at all
+  short-header.glb    a GLB whose header gives a length shorter than the header
 """
 import json
 import os
@@ -145,12 +148,20 @@ def main():
     with open(os.path.join(HERE, 'bad-index.bin'), 'wb') as f:
         f.write(bad_data)
     write('bad-index.gltf', bad_doc)
+    position = json.loads(json.dumps(doc))
+    position['meshes'][0]['primitives'][0]['attributes']['POSITION'] = 7
+    write('bad-position.gltf', position)
+    uv = json.loads(json.dumps(doc))
+    uv['meshes'][0]['primitives'][1]['attributes']['TEXCOORD_0'] = 0
+    write('bad-uv-type.gltf', uv)
     missing = json.loads(json.dumps(doc))
     missing['buffers'][0]['uri'] = 'gone.bin'
     write('missing-buffer.gltf', missing)
     draco = json.loads(json.dumps(doc))
     draco['extensionsUsed'] = draco['extensionsRequired'] = ['KHR_draco_mesh_compression']
     write('needs-draco.gltf', draco)
+    with open(os.path.join(HERE, 'short-header.glb'), 'wb') as f:
+        f.write(b'glTF' + struct.pack('<II', 2, 4) + bytes(16))
     with open(os.path.join(HERE, 'not-json.gltf'), 'w') as f:
         f.write('solid cube\n  facet normal 0 0 1\n')
 
