@@ -164,7 +164,8 @@ impl Builder<'_> {
         );
         let image = m
             .base_color_image
-            .and_then(|i| images.get(i).cloned().flatten());
+            .and_then(|i| images.get(i).cloned().flatten())
+            .map(|img| tinted(img, m.base_color));
         textures.push(Texture {
             pattern: match image {
                 Some(img) => Pattern::Image(img),
@@ -206,6 +207,23 @@ impl Builder<'_> {
             }
         }
     }
+}
+
+/// The base-colour image times the base-colour factor (glTF multiplies them): the image
+/// itself where the factor is white, else a copy in linear floats with the factor applied.
+fn tinted(img: Arc<ImageData>, factor: [f32; 4]) -> Arc<ImageData> {
+    let f = Color::new(factor[0], factor[1], factor[2]);
+    if f == Color::ONE || !f.is_finite() {
+        return img;
+    }
+    let f = f.clamp(Color::ZERO, Color::ONE);
+    let (w, h) = (img.width(), img.height());
+    let tinted =
+        ::image::Rgb32FImage::from_fn(w, h, |x, y| ::image::Rgb((img.texel(x, y) * f).to_array()));
+    Arc::new(ImageData::from_owned(
+        ::image::DynamicImage::ImageRgb32F(tinted),
+        ColorSpace::Linear,
+    ))
 }
 
 #[cfg(test)]

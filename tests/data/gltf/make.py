@@ -9,7 +9,8 @@ two-cubes.gltf (+ two-cubes.bin, checker.png): one cube mesh (side 2, centred on
 origin) placed by two nodes under a parent moved to z = -3: `CubeA` at the parent's
 origin, `CubeB` moved 2 along x and scaled by 0.5. Its faces are `Red` (a dielectric,
 roughness 0.5) on the first three and `Checker` (a metal whose base colour is a 4 x 4
-checker of red and white texels) on the other three.
+checker of red and white texels, times a base colour factor that halves green) on the other
+three.
 two-cubes.glb: the same, in one binary file.
 The broken files (each with the same two-cubes.bin unless said):
   bad-accessor.gltf   the POSITION accessor claims more vertices than its view holds
@@ -99,7 +100,8 @@ def build(bad_index=False):
             {'name': 'Red', 'pbrMetallicRoughness': {
                 'baseColorFactor': [0.8, 0.05, 0.05, 1], 'metallicFactor': 0, 'roughnessFactor': 0.5}},
             {'name': 'Checker', 'pbrMetallicRoughness': {
-                'baseColorTexture': {'index': 0}, 'metallicFactor': 1, 'roughnessFactor': 0.3}},
+                'baseColorTexture': {'index': 0}, 'baseColorFactor': [1, 0.5, 1, 1],
+                'metallicFactor': 1, 'roughnessFactor': 0.3}},
         ],
         'textures': [{'sampler': 0, 'source': 0}],
         'samplers': [{'magFilter': 9729, 'minFilter': 9987}],
