@@ -41,6 +41,9 @@ pub struct CsgLeaf {
     pub transform: Option<Transform>,
     /// Whether the result's surface faces against this solid's (it is subtracted).
     pub negated: bool,
+    /// Its bounds in the combination's space, grown by a hair: a ray that misses them
+    /// does not cross it (most rays miss most of a die's pips).
+    bounds: Aabb,
 }
 
 /// A combination of solids.
@@ -56,6 +59,34 @@ pub struct Csg {
 const MAX_CROSSINGS: usize = 8;
 
 impl CsgLeaf {
+    /// A solid of the tree (a bounded shape).
+    pub fn new(shape: Shape, transform: Option<Transform>, negated: bool) -> Self {
+        let b = shape
+            .bounds()
+            .map(|b| transform.as_ref().map_or(b, |t| t.bounds_to_world(&b)))
+            .unwrap_or_else(|| Aabb::new(Vec3A::splat(-f32::MAX), Vec3A::splat(f32::MAX)));
+        let pad = 1e-4 * (b.max - b.min).max_element().max(1.0);
+        CsgLeaf {
+            shape,
+            transform,
+            negated,
+            bounds: Aabb::new(b.min - pad, b.max + pad),
+        }
+    }
+
+    /// Whether `ray` (in the combination's space) may cross the solid in `(0, t_max)`: the
+    /// slab test against its bounds (a zero direction component gives infinities, which
+    /// `min` and `max` order; the NaN of a ray in a slab's plane is passed over by them).
+    fn may_cross(&self, ray: &Ray, t_max: f32) -> bool {
+        let inv = ray.dir.recip();
+        let t1 = (self.bounds.min - ray.origin) * inv;
+        let t2 = (self.bounds.max - ray.origin) * inv;
+        let (lo, hi) = (t1.min(t2), t1.max(t2));
+        let near = lo.x.max(lo.y).max(lo.z).max(0.0);
+        let far = hi.x.min(hi.y).min(hi.z).min(t_max);
+        near <= far
+    }
+
     fn local(&self, ray: &Ray) -> Ray {
         self.transform
             .as_ref()
@@ -69,6 +100,9 @@ impl CsgLeaf {
 
     /// Every crossing of this solid with `0 < t < t_max`, nearest first.
     fn crossings(&self, ray: &Ray, t_max: f32, out: &mut Vec<(f32, ShapeHit)>) {
+        if !self.may_cross(ray, t_max) {
+            return;
+        }
         let local = self.local(ray);
         let len = local.dir.length();
         if len == 0.0 || !len.is_finite() {
@@ -228,11 +262,7 @@ mod tests {
             leaves: shapes
                 .into_iter()
                 .enumerate()
-                .map(|(i, shape)| CsgLeaf {
-                    shape,
-                    transform: None,
-                    negated: op == CsgOp::Difference && i > 0,
-                })
+                .map(|(i, shape)| CsgLeaf::new(shape, None, op == CsgOp::Difference && i > 0))
                 .collect(),
         }))
     }

@@ -105,11 +105,7 @@ impl Builder<'_> {
                         None
                     } else {
                         self.shape(child, &at).map(|shape| {
-                            walk.leaves.push(CsgLeaf {
-                                shape,
-                                transform: placed,
-                                negated: neg,
-                            });
+                            walk.leaves.push(CsgLeaf::new(shape, placed, neg));
                             walk.materials.push(mat);
                             CsgNode::Leaf(walk.leaves.len() - 1)
                         })
