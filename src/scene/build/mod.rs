@@ -1063,25 +1063,9 @@ impl Builder<'_> {
                 );
                 None
             }
-            (Some(material), _) => match material_names.iter().position(|m| m == material) {
-                Some(i) => Some(i),
-                None => {
-                    let help =
-                        match did_you_mean(material, material_names.iter().map(String::as_str)) {
-                            Some(s) => format!("did you mean `{s}`?"),
-                            None if material_names.is_empty() => {
-                                "define it under [materials.NAME]".to_string()
-                            }
-                            None => format!("defined materials: {}", material_names.join(", ")),
-                        };
-                    self.error_help(
-                        path.key("material"),
-                        format!("no material named `{material}`"),
-                        help,
-                    );
-                    None
-                }
-            },
+            (Some(material), _) => {
+                self.material_named(material, &path.key("material"), material_names)
+            }
         };
         let transform = transform
             .as_ref()
