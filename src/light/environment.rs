@@ -144,6 +144,12 @@ impl EnvironmentMap {
         self.density.pdf(uv) / (2.0 * PI * PI * sin)
     }
 
+    /// Radiance from world direction `world`.
+    #[inline]
+    pub(crate) fn radiance(&self, world: Vec3A) -> Color {
+        self.radiance_at(self.uv(world))
+    }
+
     /// Radiance from world direction `world` and the density of [`EnvironmentMap::sample`]
     /// for it.
     #[inline]
@@ -178,7 +184,7 @@ impl Environment {
     pub fn radiance(&self, dir: Vec3A) -> Color {
         match &self.source {
             EnvironmentSource::Constant(c) => *c,
-            EnvironmentSource::Map(m) => m.radiance_at(m.uv(dir)),
+            EnvironmentSource::Map(m) => m.radiance(dir),
             EnvironmentSource::Sky(s) => s.radiance(dir),
         }
     }

@@ -107,7 +107,8 @@ impl Sky {
     /// Radiance arriving from direction `dir` (unit, world space).
     #[inline]
     pub fn radiance(&self, dir: Vec3A) -> Color {
-        self.radiance_pdf(dir).0
+        let sun = self.sun.as_ref().map_or(Color::ZERO, |s| s.radiance(dir));
+        self.map.radiance(dir) + sun
     }
 
     /// Radiance from `dir` and the density of [`Sky::sample`] for it.
