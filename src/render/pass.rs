@@ -115,7 +115,7 @@ fn pass(
 }
 
 #[cfg(test)]
-mod tests {
+pub(super) mod tests {
     use super::*;
     use crate::integrator::{Path, Whitted};
     use crate::render::render;
@@ -142,7 +142,8 @@ mod tests {
         .unwrap()
     }
 
-    fn options(threads: usize) -> RenderOptions<'static> {
+    /// Options for a test render on `threads` threads, without progress or cancelling.
+    pub(in crate::render) fn options(threads: usize) -> RenderOptions<'static> {
         RenderOptions {
             threads: Some(threads),
             progress: &|_| {},
@@ -150,7 +151,8 @@ mod tests {
         }
     }
 
-    fn bits(p: &[crate::math::Color]) -> Vec<u32> {
+    /// The pixels' bits, for comparing renders exactly.
+    pub(in crate::render) fn bits(p: &[crate::math::Color]) -> Vec<u32> {
         p.iter()
             .flat_map(|c| c.to_array().map(f32::to_bits))
             .collect()

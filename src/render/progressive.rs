@@ -157,6 +157,7 @@ pub fn render_progressive(
 
 #[cfg(test)]
 mod tests {
+    use super::super::pass::tests::{bits, options};
     use super::*;
     use crate::integrator::Path;
     use crate::render::render;
@@ -195,27 +196,13 @@ mod tests {
         .unwrap()
     }
 
-    fn options() -> RenderOptions<'static> {
-        RenderOptions {
-            threads: Some(2),
-            progress: &|_| {},
-            cancel: None,
-        }
-    }
-
-    fn bits(p: &[crate::math::Color]) -> Vec<u32> {
-        p.iter()
-            .flat_map(|c| c.to_array().map(f32::to_bits))
-            .collect()
-    }
-
     /// Passes to 13 give the render of 13, to the bit; cancelled in its third pass and
     /// taken up again, too; every event comes in order.
     #[test]
     fn passes_and_a_cancelled_one_give_one_render() {
         let scene = scene();
         let whole = render(&scene, &Path, Some(2), &|_| {}).unwrap();
-        let options = options();
+        let options = options(2);
         let until = Until {
             spp: 13,
             time: None,
@@ -271,7 +258,7 @@ mod tests {
     #[test]
     fn a_spent_time_stops_after_a_pass() {
         let scene = scene();
-        let options = options();
+        let options = options(2);
         let until = Until {
             spp: 13,
             time: Some(Duration::ZERO),

@@ -111,6 +111,24 @@ fn sky(x: u32, y: u32) -> [f32; 3] {
     }
 }
 
+/// The irradiance on an upward floor of light arriving with `radiance(direction)`: the
+/// integral of L cos(theta) over the upper hemisphere by the midpoint rule, on a grid of
+/// 720 x 1440 directions (far finer than an environment map's texels).
+pub(super) fn floor_irradiance(radiance: impl Fn(Vec3A) -> Color) -> Color {
+    let (nt, np) = (720, 1440);
+    let mut e = Color::ZERO;
+    for i in 0..nt {
+        let theta = (i as f32 + 0.5) / nt as f32 * PI / 2.0;
+        let (st, ct) = theta.sin_cos();
+        for j in 0..np {
+            let phi = (j as f32 + 0.5) / np as f32 * 2.0 * PI;
+            let d = Vec3A::new(st * phi.cos(), ct, st * phi.sin());
+            e += radiance(d) * (ct * st);
+        }
+    }
+    e * (PI / 2.0 / nt as f32) * (2.0 * PI / np as f32)
+}
+
 #[test]
 fn a_sky_with_a_sun_lights_a_floor_with_its_integral() {
     let dir = scratch("env-sky");
@@ -129,18 +147,7 @@ fn a_sky_with_a_sun_lights_a_floor_with_its_integral() {
         // Irradiance on the floor, E = integral of L cos(theta) over the upper hemisphere,
         // by the midpoint rule on a grid far finer than the texels; out goes albedo E / pi.
         let env = scene.environment.as_ref().unwrap();
-        let (nt, np) = (720, 1440);
-        let mut e = Color::ZERO;
-        for i in 0..nt {
-            let theta = (i as f32 + 0.5) / nt as f32 * PI / 2.0;
-            let (st, ct) = theta.sin_cos();
-            for j in 0..np {
-                let phi = (j as f32 + 0.5) / np as f32 * 2.0 * PI;
-                let d = Vec3A::new(st * phi.cos(), ct, st * phi.sin());
-                e += env.radiance(d) * (ct * st);
-            }
-        }
-        let e = e * (PI / 2.0 / nt as f32) * (2.0 * PI / np as f32);
+        let e = floor_irradiance(|d| env.radiance(d));
         let expect = e * (albedo / PI);
         let got = mean(&image(&scene, &PathTracer).pixels);
         for (g, x) in got.to_array().into_iter().zip(expect.to_array()) {

@@ -2,10 +2,11 @@
 //! of their radiance (the sky's by quadrature, the sun's disk in closed form), high and low;
 //! `scale` and `sun_scale` do what they say; the two outdoor scenes differ only in the hour.
 
+use super::environment::floor_irradiance;
 use super::{repo, scratch};
 use snell::integrator::Path as PathTracer;
 use snell::light::EnvironmentSource;
-use snell::math::{Color, Vec3A};
+use snell::math::Color;
 use snell::render::render;
 use snell::scene::{Format, Scene, load_str};
 use std::f32::consts::PI;
@@ -40,18 +41,7 @@ fn irradiance(scene: &Scene) -> (Color, Color) {
         panic!("not a sky")
     };
     let sun = sky.sun().unwrap();
-    let (nt, np) = (720, 1440);
-    let mut e = Color::ZERO;
-    for i in 0..nt {
-        let theta = (i as f32 + 0.5) / nt as f32 * PI / 2.0;
-        let (st, ct) = theta.sin_cos();
-        for j in 0..np {
-            let phi = (j as f32 + 0.5) / np as f32 * 2.0 * PI;
-            let d = Vec3A::new(st * phi.cos(), ct, st * phi.sin());
-            e += (env.radiance(d) - sun.radiance(d)) * (ct * st);
-        }
-    }
-    let sky_e = e * (PI / 2.0 / nt as f32) * (2.0 * PI / np as f32);
+    let sky_e = floor_irradiance(|d| env.radiance(d) - sun.radiance(d));
     let sun_e = sun.disk_radiance() * sun.solid_angle() * sun.axis().y;
     (sky_e, sun_e)
 }
