@@ -2,6 +2,7 @@
 //! lens that focuses at one distance and blurs the rest) or orthographic (parallel rays, for
 //! diagrams and plans).
 
+use crate::math::differential::Differentials;
 use crate::math::sampling::uniform_disk_concentric;
 use crate::math::{Ray, Vec2, Vec3A};
 
@@ -169,6 +170,34 @@ impl Camera {
         self.raster(width, height).ray(x, y)
     }
 
+    /// How `ray`, a ray of this camera (from any point of the lens), changes from one pixel
+    /// of an image `height` pixels tall to the next: the rays from the same point of the lens
+    /// through the film one pixel right and one pixel down, to first order (a perspective
+    /// ray's direction turns by the pixel's step less its part along the ray, times the
+    /// cosine to the view; with a lens too, as the step and the distance to the film both
+    /// scale by the focus distance).
+    #[inline]
+    pub fn differentials(&self, ray: &Ray, height: u32) -> Differentials {
+        // Pixels are square: one is 2 half-heights over the height across either way.
+        let k = 2.0 * self.half_height() / height as f32;
+        let (step_x, step_y) = (self.right * k, self.up * -k);
+        if let Projection::Orthographic { .. } = self.view.projection {
+            return Differentials {
+                dx_origin: step_x,
+                dy_origin: step_y,
+                ..Default::default()
+            };
+        }
+        let d = ray.dir;
+        let cos = d.dot(self.forward).max(0.0);
+        let turn = |step: Vec3A| (step - d * d.dot(step)) * cos;
+        Differentials {
+            dx_dir: turn(step_x),
+            dy_dir: turn(step_y),
+            ..Default::default()
+        }
+    }
+
     /// The camera set up for an image of `width` by `height` pixels, for many rays.
     #[inline]
     pub fn raster(&self, width: u32, height: u32) -> RasterCamera {
@@ -278,6 +307,44 @@ mod tests {
             (p.x - 10.0).abs() < 0.01 && (p.y - 10.0).abs() < 0.01,
             "{p}"
         );
+    }
+
+    /// The differentials are the rays through the next pixels, for every kind of camera.
+    #[test]
+    fn differentials_reach_the_next_pixels() {
+        let base = CameraView::perspective(
+            Vec3A::new(1.0, 2.0, 3.0),
+            Vec3A::new(-1.0, 0.5, -4.0),
+            Vec3A::Y,
+            40.0,
+        );
+        let lens = CameraView {
+            lens: Some(Lens {
+                radius: 0.3,
+                focus: 6.0,
+            }),
+            ..base
+        };
+        let ortho = CameraView {
+            projection: Projection::Orthographic { height: 5.0 },
+            ..base
+        };
+        let u = Vec2::new(0.8, 0.3);
+        for view in [base, lens, ortho] {
+            let camera = Camera::from_view(view).unwrap();
+            let cam = camera.raster(640, 480);
+            for (x, y) in [(0.5, 0.5), (320.0, 240.0), (600.25, 17.5)] {
+                let r = cam.ray_lens(x, y, u);
+                let d = camera.differentials(&r, 480);
+                for (n, o, dd) in [
+                    (cam.ray_lens(x + 1.0, y, u), d.dx_origin, d.dx_dir),
+                    (cam.ray_lens(x, y + 1.0, u), d.dy_origin, d.dy_dir),
+                ] {
+                    assert!(((r.origin + o) - n.origin).length() < 1e-5, "{view:?}");
+                    assert!(((r.dir + dd) - n.dir).length() < 1e-5, "{view:?}");
+                }
+            }
+        }
     }
 
     /// A point on the ray through a film position projects back to that position.

@@ -217,6 +217,32 @@ impl Shape {
         }
     }
 
+    /// How the shape's uv changes from the hit `hit` at `p` to the point `dp` away on its
+    /// tangent plane (the patch a pixel sees; zero unless `want_uv`), and the unit normal
+    /// there (the shading normal, for meshes). Analytic shapes difference their uv forward and backward and keep the
+    /// smaller of each, so that a step across a seam (a sphere's `u` going from 1 to 0) does
+    /// not count as a jump.
+    pub fn differential(
+        &self,
+        p: Vec3A,
+        hit: &ShapeHit,
+        dp: Vec3A,
+        want_uv: bool,
+    ) -> (Vec2, Vec3A) {
+        if let Shape::Mesh(m) = self {
+            return m.differential(p, hit, dp);
+        }
+        let ahead = self.surface(p + dp, hit, want_uv);
+        if !want_uv {
+            return (Vec2::ZERO, ahead.normal);
+        }
+        let here = self.surface(p, hit, true);
+        let behind = self.surface(p - dp, hit, true);
+        let (f, b) = (ahead.uv - here.uv, here.uv - behind.uv);
+        let pick = |f: f32, b: f32| if f.abs() <= b.abs() { f } else { b };
+        (Vec2::new(pick(f.x, b.x), pick(f.y, b.y)), ahead.normal)
+    }
+
     /// Object-space bounds; `None` for unbounded shapes (planes).
     pub fn bounds(&self) -> Option<Aabb> {
         match self {

@@ -18,10 +18,11 @@ use super::path_explain::{
 };
 use crate::bsdf::{Bsdf, BsdfSample};
 use crate::light::Falloff;
+use crate::math::differential::Differentials;
 use crate::math::distribution::power_heuristic;
 use crate::math::{Color, Frame, Ray, Vec2, Vec3A, offset_ray_origin};
 use crate::sampler::Sampler;
-use crate::scene::{Hit, Scene};
+use crate::scene::{Hit, RayDifferentials, Scene, SurfacePatch};
 
 /// The path tracer.
 #[derive(Clone, Copy, Debug, Default)]
@@ -78,6 +79,9 @@ impl Path {
         let (mut specular, mut prev_pdf, mut prev_point) = (true, 0.0f32, ray.origin);
         // The absorption of the solid the path is inside, if any.
         let mut medium: Option<Color> = None;
+        // How the ray changes to the next pixels, while the path has met only mirrors and
+        // glass (a rough bounce ends them, and textures are read at a point after it).
+        let mut diff = RayDifferentials::camera(scene);
         rays.camera += 1;
         loop {
             rays.deepest = rays.deepest.max(depth);
@@ -94,6 +98,19 @@ impl Path {
             if let Some(sigma) = medium {
                 beta *= (-sigma * hit.t).exp();
             }
+            // The patch of surface the pixel sees, where a texture reads it (with the normal's
+            // change, for a mirror or glass to pass the differentials on).
+            let patch = match diff {
+                RayDifferentials::None => None,
+                _ if !scene.reads_textures(&hit) => None,
+                d => d
+                    .of(scene, &ray)
+                    .and_then(|d| scene.patch(&hit, &ray, &d, true)),
+            };
+            let tex = crate::texture::TexturePoint {
+                footprint: patch.as_ref().map(|p| &p.footprint),
+                ..hit.tex
+            };
             let m = scene.material_at(&hit);
             let front = ray.dir.dot(hit.normal) < 0.0;
             let mut record = R::ACTIVE.then(|| VertexRecord {
@@ -107,7 +124,7 @@ impl Path {
             });
             let mut added = Color::ZERO;
             if let Some(e) = &m.emission {
-                let le = e.emitted(front, &scene.textures, &hit.tex);
+                let le = e.emitted(front, &scene.textures, &tex);
                 if le != Color::ZERO {
                     let (w, light_pdf) =
                         self.emitter_weight(scene, &hit, specular, prev_pdf, prev_point);
@@ -133,10 +150,10 @@ impl Path {
                 }
                 break;
             }
-            let base = scene.textures[m.texture].eval(&hit.tex);
+            let base = scene.textures[m.texture].eval(&tex);
             let frame = Frame::from_axis(hit.shading_normal);
             let v = Vertex {
-                bsdf: m.bsdf(&scene.textures, &hit.tex, base),
+                bsdf: m.bsdf(&scene.textures, &tex, base),
                 wo: frame.to_local(-ray.dir),
                 frame,
                 ng: hit.normal,
@@ -204,6 +221,17 @@ impl Path {
                 // Into the solid when the path came from outside, out of it otherwise.
                 medium = if front { m.absorption_inside() } else { None };
             }
+            let before = if specular {
+                diff
+            } else {
+                RayDifferentials::None
+            };
+            diff = match before.of(scene, &ray) {
+                Some(d) => self
+                    .passed_on(scene, &hit, &ray, &d, patch, dir, through, front)
+                    .map_or(RayDifferentials::None, RayDifferentials::Known),
+                None => RayDifferentials::None,
+            };
             let side = if outward { hit.normal } else { -hit.normal };
             ray = Ray::new(offset_ray_origin(hit.point, side), dir);
             skip = scene.leaving(&hit, outward);
@@ -235,6 +263,35 @@ impl Path {
             Some(c) => l.min(Color::splat(c)),
             None => l,
         }
+    }
+
+    /// The differentials of the ray a delta lobe sent on in direction `dir` from `hit`,
+    /// which `ray` (with differentials `d`) met: mirrored, refracted, or passed straight
+    /// through (thin glass). `patch` is the hit's if it was worked out already.
+    #[allow(clippy::too_many_arguments)]
+    fn passed_on(
+        &self,
+        scene: &Scene,
+        hit: &Hit,
+        ray: &Ray,
+        d: &Differentials,
+        patch: Option<SurfacePatch>,
+        dir: Vec3A,
+        through: bool,
+        front: bool,
+    ) -> Option<Differentials> {
+        let p = patch.or_else(|| scene.patch(hit, ray, d, true))?;
+        let side = if front { 1.0 } else { -1.0 };
+        let (n, dn) = (hit.shading_normal * side, p.dn.map(|v| v * side));
+        Some(if !through {
+            d.reflected(ray, p.dp, dn, n)
+        } else if (dir - ray.dir).length_squared() < 1e-10 {
+            d.passed(p.dp)
+        } else {
+            let ior = scene.material_at(hit).ior;
+            let eta = if front { 1.0 / ior } else { ior };
+            d.refracted(ray, dir, p.dp, dn, n, eta)
+        })
     }
 
     /// What a path leaving the scene along `ray` sees: the environment (weighed by MIS

@@ -10,7 +10,7 @@ use super::explain::{
 use super::{Integrator, RayStats};
 use crate::light::Light;
 use crate::math::{Color, Ray, Vec3A, fresnel_dielectric, offset_ray_origin, reflect, refract};
-use crate::scene::{Hit, Scene, Skip};
+use crate::scene::{Hit, RayDifferentials, Scene, Skip, SurfacePatch};
 
 /// The Whitted integrator.
 #[derive(Clone, Copy, Debug, Default)]
@@ -38,7 +38,7 @@ impl Integrator for Whitted {
             let found = &mut found[..batch.len()];
             scene.closest_hits(batch, found);
             for ((ray, f), o) in batch.iter().zip(found.iter()).zip(out.iter_mut()) {
-                let seg = Segment::camera(ray);
+                let seg = Segment::camera(scene, ray);
                 seg.begin(ray, rays, &mut NoRecord);
                 *o = self.trace_found(scene, ray, f, &seg, rays, &mut NoRecord);
             }
@@ -58,11 +58,13 @@ struct Segment {
     weight: Color,
     /// The object whose surface the ray leaves, when it cannot meet it again.
     skip: Skip,
+    /// How the ray changes to the next pixels, while it has only met mirrors and glass.
+    diff: RayDifferentials,
 }
 
 impl Segment {
     /// A camera ray's segment.
-    fn camera(ray: &Ray) -> Self {
+    fn camera(scene: &Scene, ray: &Ray) -> Self {
         Segment {
             kind: RayKind::Camera,
             from: ray.origin,
@@ -70,6 +72,7 @@ impl Segment {
             medium: None,
             weight: Color::ONE,
             skip: Skip::NONE,
+            diff: RayDifferentials::camera(scene),
         }
     }
 
@@ -110,6 +113,11 @@ impl Whitted {
             medium,
             weight: Color::ONE,
             skip: Skip::NONE,
+            diff: if depth == 1 {
+                RayDifferentials::camera(scene)
+            } else {
+                RayDifferentials::None
+            },
         };
         self.trace_from(scene, ray, &seg, rays, &mut NoRecord)
     }
@@ -122,7 +130,7 @@ impl Whitted {
         rays: &mut RayStats,
         rec: &mut impl Recorder,
     ) -> Color {
-        self.trace_from(scene, ray, &Segment::camera(ray), rays, rec)
+        self.trace_from(scene, ray, &Segment::camera(scene, ray), rays, rec)
     }
 
     /// The colour along `ray`; absorption and fog are measured from `seg.from`, so the
@@ -230,6 +238,32 @@ impl Whitted {
     ) -> Color {
         let m = scene.material_at(hit);
         let d = ray.dir;
+        // The patch of surface the pixel sees, where a texture reads it (and then the hit's
+        // texture point reads over its footprint) or a mirror or glass passes the
+        // differentials on.
+        let patch = match seg.diff {
+            RayDifferentials::None => None,
+            _ if !scene.reads_textures(hit) => None,
+            d => {
+                // The normal's change too where rays may go on from here.
+                let on = m.terms.reflectivity > 0.0
+                    || m.terms.transparency > 0.0
+                    || m.textured.is_some();
+                let deeper = on && seg.depth < scene.settings.max_depth;
+                d.of(scene, ray)
+                    .and_then(|diff| scene.patch(hit, ray, &diff, deeper))
+            }
+        };
+        let tex = crate::texture::TexturePoint {
+            footprint: patch.as_ref().map(|p| &p.footprint),
+            ..hit.tex
+        };
+        let tex = &tex;
+        let patch_of = |patch: Option<SurfacePatch>| {
+            let diff = seg.diff.of(scene, ray)?;
+            // (A patch made for the textures has the normals' change wherever rays go on.)
+            Some((diff, patch.or_else(|| scene.patch(hit, ray, &diff, true))?))
+        };
         // Entering or leaving is told by the normal: the outward normal faces the ray when
         // the ray comes from outside.
         let entering = d.dot(hit.normal) < 0.0;
@@ -241,7 +275,9 @@ impl Whitted {
         } else {
             -hit.shading_normal
         };
-        let base = scene.textures[m.texture].eval(&hit.tex);
+        // The patch's normal changes are the outward normal's: turned with it.
+        let side = if entering { 1.0 } else { -1.0 };
+        let base = scene.textures[m.texture].eval(tex);
         let above = offset_ray_origin(hit.point, n);
         // Rays from `above` leave through the outside exactly when the ray came from there.
         let skip_above = scene.leaving(hit, entering);
@@ -249,14 +285,14 @@ impl Whitted {
             rec.hit(hit_record(scene, hit, entering, base));
         }
 
-        let terms = m.terms_at(&scene.textures, &hit.tex);
+        let terms = m.terms_at(&scene.textures, tex);
         let t = terms.transparency;
         let mut out = scene.ambient * base * (terms.ambient * (1.0 - t));
         if R::ACTIVE {
             rec.ambient(out);
         }
         if let Some(e) = &m.emission {
-            let emitted = e.emitted(entering, &scene.textures, &hit.tex);
+            let emitted = e.emitted(entering, &scene.textures, tex);
             out += emitted;
             if R::ACTIVE && emitted != Color::ZERO {
                 rec.note(format!("emits {:?}", emitted.to_array()));
@@ -384,6 +420,10 @@ impl Whitted {
                     medium: inside,
                     weight,
                     skip: scene.leaving(hit, !entering),
+                    diff: patch_of(patch).map_or(RayDifferentials::None, |(diff, p)| {
+                        let dn = p.dn.map(|v| v * side);
+                        RayDifferentials::Known(diff.refracted(ray, dir, p.dp, dn, ns, eta))
+                    }),
                 };
                 out += self.trace_from(scene, &Ray::new(below, dir), &child, rays, rec) * weight;
             }
@@ -402,6 +442,10 @@ impl Whitted {
                 medium: seg.medium,
                 weight: reflect_weight,
                 skip: skip_above,
+                diff: patch_of(patch).map_or(RayDifferentials::None, |(diff, p)| {
+                    let dn = p.dn.map(|v| v * side);
+                    RayDifferentials::Known(diff.reflected(ray, p.dp, dn, ns))
+                }),
             };
             out += self.trace_from(scene, &r, &child, rays, rec) * reflect_weight;
         }

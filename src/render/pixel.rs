@@ -311,6 +311,7 @@ mod tests {
                     filter: Filter::new(kind, None),
                     integrator: Default::default(),
                     tone: Default::default(),
+                    filter_textures: true,
                 };
                 for (x, y) in [(0, 0), (17, 5), (63, 40)] {
                     let mut got = vec![];

@@ -78,7 +78,9 @@ impl Builder<'_> {
         let images: Vec<Option<Arc<ImageData>>> = scene
             .images
             .into_iter()
-            .map(|i| i.map(|img| Arc::new(ImageData::from_owned(img, ColorSpace::Srgb))))
+            .map(|i| {
+                i.map(|img| Arc::new(ImageData::from_owned(img, ColorSpace::Srgb).with_mipmaps()))
+            })
             .collect();
         // Scene materials for the file's materials, and for glTF's default one, made when
         // a mesh first uses them.
@@ -220,10 +222,13 @@ fn tinted(img: Arc<ImageData>, factor: [f32; 4]) -> Arc<ImageData> {
     let (w, h) = (img.width(), img.height());
     let tinted =
         ::image::Rgb32FImage::from_fn(w, h, |x, y| ::image::Rgb((img.texel(x, y) * f).to_array()));
-    Arc::new(ImageData::from_owned(
-        ::image::DynamicImage::ImageRgb32F(tinted),
-        ColorSpace::Linear,
-    ))
+    Arc::new(
+        ImageData::from_owned(
+            ::image::DynamicImage::ImageRgb32F(tinted),
+            ColorSpace::Linear,
+        )
+        .with_mipmaps(),
+    )
 }
 
 #[cfg(test)]

@@ -3,6 +3,7 @@
 
 mod build;
 mod diag;
+mod footprint;
 pub mod format;
 mod gltf;
 mod limits;
@@ -11,6 +12,7 @@ mod mtl;
 
 pub use build::{MAX_MAGNITUDE, load, load_str, load_with};
 pub use diag::{DocPath, Format, Problem, SceneDiagnostic, SceneError, Seg, did_you_mean};
+pub use footprint::{RayDifferentials, SurfacePatch};
 pub use format::{IntegratorKind, schema};
 pub use limits::{Limits, MemoryEstimate, available_memory, memory_estimate};
 
@@ -45,6 +47,9 @@ pub struct RenderSettings {
     pub integrator: IntegratorSettings,
     /// Exposure and tone curve of 8-bit outputs.
     pub tone: crate::output::tone::Tone,
+    /// Whether camera rays carry differentials, so textures are filtered over each
+    /// pixel's footprint.
+    pub filter_textures: bool,
 }
 
 /// Which integrator renders, and the path tracer's settings (`[integrator]`).
@@ -281,8 +286,10 @@ pub struct Hit {
     pub material: usize,
     /// The mesh's triangle hit (0 for other shapes).
     pub prim: u32,
+    /// The shape's part hit (side or cap, box face; 0 for shapes of one part).
+    pub part: u8,
     /// What textures need, in object space.
-    pub tex: TexturePoint,
+    pub tex: TexturePoint<'static>,
 }
 
 /// A scene ready to render: immutable, shared by all threads.
@@ -331,12 +338,30 @@ pub struct Scene {
     transparent_objects: Vec<usize>,
     /// Per object: whether its texture reads the shape's own uv.
     needs_uv: Vec<bool>,
+    /// Per material: whether it reads a texture that varies over the surface.
+    textured: Vec<bool>,
     /// The files the scene read besides itself (textures, meshes, MTL files and their
     /// maps), sorted: what a preview watches for changes.
     pub files: Vec<PathBuf>,
 }
 
 impl Scene {
+    /// The differentials of a camera ray of this scene's camera and image (none where
+    /// textures are not filtered), its neighbours brought as close as the pixel's samples
+    /// lie.
+    #[inline]
+    pub fn camera_differentials(
+        &self,
+        ray: &Ray,
+    ) -> Option<crate::math::differential::Differentials> {
+        let s = &self.settings;
+        s.filter_textures.then(|| {
+            self.camera
+                .differentials(ray, s.height)
+                .scaled(crate::math::differential::camera_scale(s.spp))
+        })
+    }
+
     /// The area light a hit is on, if the path tracer samples the emission there.
     #[inline]
     pub fn area_light_at(&self, hit: &Hit) -> Option<usize> {
@@ -468,10 +493,12 @@ impl Scene {
             object: i,
             material: o.material_at(&h),
             prim: h.prim,
+            part: h.part,
             tex: TexturePoint {
                 point: s.point,
                 uv: s.uv * o.uv_scale,
                 center: o.center,
+                footprint: None,
             },
         }
     }

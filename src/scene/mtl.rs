@@ -93,7 +93,7 @@ impl Builder<'_> {
                 ColorSpace::Srgb,
                 self.limits.max_texture_pixels,
             ) {
-                Ok(img) => Pattern::Image(Arc::new(img)),
+                Ok(img) => Pattern::Image(Arc::new(img.with_mipmaps())),
                 Err(e) => {
                     self.error_help(
                         path.clone(),

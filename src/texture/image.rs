@@ -17,6 +17,9 @@ pub struct ImageData {
     width: u32,
     height: u32,
     texels: Texels,
+    /// The MIP pyramid below this image: each level half the size of the one above (rounded
+    /// up), to 1 x 1 (empty for the levels themselves).
+    coarser: Vec<ImageData>,
 }
 
 /// An image's texels as stored.
@@ -158,15 +161,66 @@ impl ImageData {
             width,
             height,
             texels,
+            coarser: Vec::new(),
         }
+    }
+
+    /// The image with its MIP pyramid, for a texture read through a footprint (an image
+    /// without one is read at its full size whatever the footprint).
+    pub fn with_mipmaps(mut self) -> Self {
+        self.coarser = super::mipmap::pyramid(&self);
+        self
+    }
+
+    /// An image of `width` x `height` linear texels (row by row from the top), stored as
+    /// `like` stores its own: as bytes through its table, to the nearest entry, or as floats.
+    pub(super) fn level_like(
+        like: &ImageData,
+        width: u32,
+        height: u32,
+        texels: Vec<Color>,
+    ) -> Self {
+        let texels = match &like.texels {
+            Texels::Bytes { linear, .. } => {
+                // The table rises, so the nearest entry is one side of where x would go.
+                let byte = |x: f32| {
+                    let i = linear.partition_point(|&v| v < x).min(255);
+                    if i > 0 && (x - linear[i - 1]) <= (linear[i] - x) {
+                        (i - 1) as u8
+                    } else {
+                        i as u8
+                    }
+                };
+                Texels::Bytes {
+                    rgb: texels
+                        .iter()
+                        .flat_map(|c| [byte(c.x), byte(c.y), byte(c.z)])
+                        .collect(),
+                    linear: linear.clone(),
+                }
+            }
+            Texels::Floats(_) => Texels::Floats(texels.iter().map(|c| c.to_array()).collect()),
+        };
+        ImageData {
+            width,
+            height,
+            texels,
+            coarser: Vec::new(),
+        }
+    }
+
+    /// The MIP levels below the image, finest first.
+    pub(super) fn coarser(&self) -> &[ImageData] {
+        &self.coarser
     }
 
     /// Bytes the texels take.
     pub fn bytes(&self) -> usize {
-        match &self.texels {
+        let own = match &self.texels {
             Texels::Bytes { rgb, .. } => rgb.len() + 256 * 4,
             Texels::Floats(t) => t.len() * 12,
-        }
+        };
+        own + self.coarser.iter().map(ImageData::bytes).sum::<usize>()
     }
 
     /// The mean of its texels (linear), for what a texture gives on the whole: an emitting

@@ -3,7 +3,7 @@ use crate::math::{Frame, Transform, Vec2, Vec3A};
 
 /// What a mapping may need to know about a surface point, all in the object's own space.
 #[derive(Clone, Copy, Debug)]
-pub struct TexturePoint {
+pub struct TexturePoint<'a> {
     /// The point, in object space.
     pub point: Vec3A,
     /// The shape's own uv at the point.
@@ -11,15 +11,51 @@ pub struct TexturePoint {
     /// Centre of the object's bounds, in object space (the default centre of spherical and
     /// cylindrical mappings).
     pub center: Vec3A,
+    /// The patch of surface the pixel sees around the point, if known (`None`: a point,
+    /// read unfiltered). Borrowed, so that a hit, which holds a point without one, stays
+    /// small.
+    pub footprint: Option<&'a Footprint>,
 }
 
-impl TexturePoint {
+/// The patch of surface between a ray and its neighbours one pixel right (`x`) and one pixel
+/// down (`y`), as offsets in object space and in the shape's own uv. Zero where the ray
+/// carries no differentials (after a diffuse bounce), which reads textures at a point.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Footprint {
+    /// Offset of the neighbour one pixel right, object space.
+    pub dpdx: Vec3A,
+    /// Offset of the neighbour one pixel down, object space.
+    pub dpdy: Vec3A,
+    /// The shape's uv there minus the point's.
+    pub duvdx: Vec2,
+    /// The same one pixel down.
+    pub duvdy: Vec2,
+}
+
+impl Footprint {
+    /// Whether the footprint is a point (nothing to filter over).
+    #[inline]
+    pub fn is_point(&self) -> bool {
+        self.dpdx == Vec3A::ZERO && self.dpdy == Vec3A::ZERO
+    }
+}
+
+impl TexturePoint<'_> {
+    /// The footprint, if it is more than a point.
+    #[inline]
+    pub fn area(&self) -> Option<&Footprint> {
+        self.footprint.filter(|f| !f.is_point())
+    }
+}
+
+impl TexturePoint<'static> {
     /// A point with no uv, centred at the origin (for tests and solid textures).
     pub fn at(point: Vec3A) -> Self {
         TexturePoint {
             point,
             uv: Vec2::ZERO,
             center: Vec3A::ZERO,
+            footprint: None,
         }
     }
 
@@ -29,6 +65,7 @@ impl TexturePoint {
             point: Vec3A::ZERO,
             uv,
             center: Vec3A::ZERO,
+            footprint: None,
         }
     }
 }
@@ -110,6 +147,39 @@ impl Mapping {
         }
     }
 
+    /// Texture coordinates of `p` with how they change to the neighbouring pixels right and
+    /// below (zero for a point footprint). The shape's uv carries its own; the others are
+    /// the mapping's differences over the footprint, forward and backward, the smaller of
+    /// each: a difference that crosses a seam (where `u` jumps from 1 to 0) is the large one.
+    #[inline]
+    pub fn uv_footprint(&self, p: &TexturePoint) -> (Vec2, Vec2, Vec2) {
+        let uv = self.uv(p);
+        let Some(f) = p.area() else {
+            return (uv, Vec2::ZERO, Vec2::ZERO);
+        };
+        match self {
+            Mapping::Uv => (uv, f.duvdx, f.duvdy),
+            Mapping::Planar { u_axis, v_axis, .. } => {
+                let d = |dp: Vec3A| Vec2::new(dp.dot(*u_axis), dp.dot(*v_axis));
+                (uv, d(f.dpdx), d(f.dpdy))
+            }
+            _ => {
+                let at = |dp: Vec3A| {
+                    self.uv(&TexturePoint {
+                        point: p.point + dp,
+                        ..*p
+                    })
+                };
+                let d = |dp: Vec3A| {
+                    let (ahead, behind) = (at(dp) - uv, uv - at(-dp));
+                    let pick = |a: f32, b: f32| if a.abs() <= b.abs() { a } else { b };
+                    Vec2::new(pick(ahead.x, behind.x), pick(ahead.y, behind.y))
+                };
+                (uv, d(f.dpdx), d(f.dpdy))
+            }
+        }
+    }
+
     /// Whether images should clamp rather than repeat vertically (the poles of a sphere).
     pub fn clamps_v(&self) -> bool {
         matches!(self, Mapping::Spherical { .. })
@@ -154,8 +224,52 @@ mod tests {
             point: Vec3A::new(10.0, 12.0, -80.0),
             uv: Vec2::ZERO,
             center: Vec3A::new(10.0, 8.0, -80.0),
+            footprint: None,
         };
         assert!(m.uv(&p).y.abs() < 1e-6, "north pole");
+    }
+
+    #[test]
+    fn footprints_in_uv_across_the_seam_and_on_a_plane() {
+        let m = Mapping::Spherical {
+            center: Some(Vec3A::ZERO),
+            rotation: None,
+        };
+        // Behind the sphere (-z) u jumps from 1 to 0; a footprint there is as small as
+        // anywhere else: 0.01 across a unit sphere's equator is 0.01 / (2 pi) in u.
+        for x in [-1e-3f32, 0.0, 1e-3] {
+            let f = Footprint {
+                dpdx: Vec3A::X * 0.01,
+                dpdy: Vec3A::Y * 0.01,
+                ..Default::default()
+            };
+            let p = TexturePoint {
+                footprint: Some(&f),
+                ..TexturePoint::at(Vec3A::new(x, 0.0, -1.0))
+            };
+            let (_, dx, dy) = m.uv_footprint(&p);
+            let want = 0.01 / std::f32::consts::TAU;
+            assert!((dx.x.abs() - want).abs() < 1e-4, "{x}: {dx}");
+            assert!(
+                (dy.y.abs() - 0.01 / std::f32::consts::PI).abs() < 1e-4,
+                "{dy}"
+            );
+        }
+        let planar = Mapping::planar(Vec3A::ZERO, Vec3A::X * 2.0, Vec3A::Z);
+        let f = Footprint {
+            dpdx: Vec3A::new(0.5, 0.0, 0.25),
+            ..Default::default()
+        };
+        let p = TexturePoint {
+            footprint: Some(&f),
+            ..TexturePoint::at(Vec3A::new(3.0, 0.0, 1.0))
+        };
+        let (_, dx, dy) = planar.uv_footprint(&p);
+        assert_eq!(dx, Vec2::new(1.0, 0.25));
+        assert_eq!(dy, Vec2::ZERO);
+        // No footprint, no derivatives.
+        let (_, dx, _) = planar.uv_footprint(&TexturePoint::at(Vec3A::ONE));
+        assert_eq!(dx, Vec2::ZERO);
     }
 
     #[test]

@@ -2,11 +2,13 @@
 //! turns a surface point into texture coordinates (the shape's own uv, spherical,
 //! cylindrical or planar).
 
+mod antialias;
 mod image;
 mod mapping;
+mod mipmap;
 
 pub use image::{ColorSpace, ImageData, decode, in_guarded_decoder, srgb_to_linear};
-pub use mapping::{Mapping, TexturePoint};
+pub use mapping::{Footprint, Mapping, TexturePoint};
 
 use crate::math::{Color, Vec2};
 use std::sync::Arc;
@@ -77,11 +79,14 @@ impl Texture {
         }
     }
 
-    /// The linear colour at a surface point.
+    /// The linear colour at a surface point, averaged over its footprint where it has one:
+    /// images through their MIP pyramid, checker and stripes in closed form under a tent
+    /// filter one footprint wide (see docs/scene-format.md, "Texture filtering").
     #[inline]
     pub fn eval(&self, p: &TexturePoint) -> Color {
         match &self.pattern {
             Pattern::Solid(c) => *c,
+            _ if p.area().is_some() => self.eval_filtered(p),
             Pattern::Image(img) => {
                 let uv = self.mapping.uv(p);
                 img.sample_bilinear(uv, self.mapping.clamps_v())
@@ -102,6 +107,30 @@ impl Texture {
                     *b
                 }
             }
+        }
+    }
+
+    /// [`Texture::eval`] over a footprint.
+    fn eval_filtered(&self, p: &TexturePoint) -> Color {
+        let (uv, dx, dy) = self.mapping.uv_footprint(p);
+        // A mix of two colours: `w` is +1 for the first, -1 for the second (exactly the
+        // colour where both are the same).
+        let mix = |first: Color, second: Color, w: f32| second + (first - second) * (0.5 + 0.5 * w);
+        let radius = Vec2::new(dx.x.abs().max(dy.x.abs()), dx.y.abs().max(dy.y.abs()));
+        match &self.pattern {
+            Pattern::Solid(c) => *c,
+            Pattern::Image(img) => mipmap::sample(img, uv, dx, dy, self.mapping.clamps_v()),
+            Pattern::Checker { even, odd, size } => {
+                let r = radius / *size;
+                let w = antialias::square_wave(uv.x / size, r.x)
+                    * antialias::square_wave(uv.y / size, r.y);
+                mix(*even, *odd, w)
+            }
+            Pattern::Stripes { a, b, width } => mix(
+                *a,
+                *b,
+                antialias::square_wave(uv.x / width, radius.x / width),
+            ),
         }
     }
 }
@@ -209,5 +238,54 @@ mod tests {
         assert_eq!(at(0.75), Color::ZERO);
         assert_eq!(at(-0.25), Color::ZERO);
         assert_eq!(at(1.1), Color::ONE);
+    }
+
+    #[test]
+    fn a_footprint_averages_checker_and_stripes() {
+        let checker = Texture {
+            pattern: Pattern::Checker {
+                even: Color::ONE,
+                odd: Color::ZERO,
+                size: 0.5,
+            },
+            mapping: Mapping::Uv,
+        };
+        let stripes = Texture {
+            pattern: Pattern::Stripes {
+                a: Color::new(1.0, 0.0, 0.0),
+                b: Color::new(0.0, 0.0, 1.0),
+                width: 0.5,
+            },
+            mapping: Mapping::Uv,
+        };
+        let at = |t: &Texture, uv: Vec2, d: f32| {
+            let f = Footprint {
+                dpdx: crate::math::Vec3A::X,
+                dpdy: crate::math::Vec3A::Y,
+                duvdx: Vec2::new(d, 0.0),
+                duvdy: Vec2::new(0.0, d),
+            };
+            t.eval(&TexturePoint {
+                footprint: Some(&f),
+                ..TexturePoint::with_uv(uv)
+            })
+        };
+        // Far smaller than a cell, inside one: the cell itself.
+        assert_eq!(at(&checker, Vec2::new(0.25, 0.25), 0.01), Color::ONE);
+        assert_eq!(at(&checker, Vec2::new(0.75, 0.25), 0.01), Color::ZERO);
+        // Many cells wide: the mean of the two colours.
+        let grey = at(&checker, Vec2::new(0.3, 0.1), 20.0);
+        assert!(
+            (grey - Color::splat(0.5)).abs().max_element() < 1e-3,
+            "{grey}"
+        );
+        let purple = at(&stripes, Vec2::new(0.3, 0.1), 20.0);
+        assert!((purple - Color::new(0.5, 0.0, 0.5)).abs().max_element() < 1e-3);
+        // On an edge between cells, half of each.
+        let edge = at(&checker, Vec2::new(0.5, 0.25), 0.1);
+        assert!(
+            (edge - Color::splat(0.5)).abs().max_element() < 1e-5,
+            "{edge}"
+        );
     }
 }

@@ -9,6 +9,7 @@ mod csg;
 mod docs;
 mod environment;
 mod explain;
+mod filtering;
 mod gltf;
 mod meshes;
 mod optics;

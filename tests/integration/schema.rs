@@ -320,6 +320,7 @@ max_depth = 8
 seed = 7
 exposure = -0.5
 tonemap = "aces"
+filter_textures = true
 [integrator]
 type = "path"
 sampler = "independent"

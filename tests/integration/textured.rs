@@ -25,7 +25,9 @@ fn bits(img: &Image) -> Vec<[u32; 3]> {
 /// A floor (and a ball, with `ball`) under point lights, an emitting panel and a bright
 /// background, looking down; the material `m` on both, with `keys`, and the textures
 /// `textures` (TOML). Without the ball no surface of `m` sees another: light reaches each
-/// point of the floor without passing another point of it.
+/// point of the floor without passing another point of it. Textures are read at points
+/// (`filter_textures = false`), so that each pixel is one value or the other: filtering
+/// blends them near an edge (tests/integration/filtering.rs).
 fn scene(kind: &str, keys: &str, textures: &str, ball: bool) -> String {
     let ball = if ball {
         "[[objects]]\ntype = \"sphere\"\nradius = 1\nmaterial = \"m\"\n"
@@ -33,7 +35,7 @@ fn scene(kind: &str, keys: &str, textures: &str, ball: bool) -> String {
         ""
     };
     format!(
-        "[image]\nwidth = 24\nheight = 24\nsamples = 1\nbackground = [0.4, 0.5, 0.6]\nmax_depth = 4\n\
+        "[image]\nwidth = 24\nheight = 24\nsamples = 1\nbackground = [0.4, 0.5, 0.6]\nmax_depth = 4\nfilter_textures = false\n\
          [integrator]\ntype = \"{kind}\"\n\
          [world]\nambient = 0.2\n\
          [camera]\nposition = [0.3, 3, 4]\nlook_at = [0, 0, 0]\nfov = 50\n\

@@ -347,6 +347,49 @@ impl Mesh {
         Surface { point, normal, uv }
     }
 
+    /// How the uv changes from a hit at `p` to the point `dp` away from it on the triangle's
+    /// plane,
+    /// and the shading normal there: the barycentrics' change times the corners' uvs (the
+    /// barycentrics themselves where the mesh has no uvs), and the vertex normals
+    /// interpolated there (the face's normal where the mesh has none).
+    pub fn differential(&self, p: Vec3A, hit: &ShapeHit, dp: Vec3A) -> (Vec2, Vec3A) {
+        let [a, b, c] = self.corners(hit.prim);
+        let (e1, e2) = (b - a, c - a);
+        let (d00, d01, d11) = (e1.dot(e1), e1.dot(e2), e2.dot(e2));
+        let denom = d00 * d11 - d01 * d01;
+        // The barycentrics (of the second and third corners) of an offset in the plane.
+        let bary_of = |v: Vec3A| {
+            let (d20, d21) = (v.dot(e1), v.dot(e2));
+            Vec2::new(
+                (d11 * d20 - d01 * d21) / denom,
+                (d00 * d21 - d01 * d20) / denom,
+            )
+        };
+        if denom.is_nan() || denom <= 0.0 {
+            return (Vec2::ZERO, self.surface(hit).normal);
+        }
+        let hit = &ShapeHit {
+            bary: bary_of(p - a),
+            ..*hit
+        };
+        let db = bary_of(dp);
+        let f = self.faces[hit.prim as usize];
+        let duv = if self.uvs.is_empty() {
+            db
+        } else {
+            let t = |i: usize| self.uvs[f[i] as usize];
+            (t(1) - t(0)) * db.x + (t(2) - t(0)) * db.y
+        };
+        let moved = ShapeHit {
+            bary: hit.bary + db,
+            ..*hit
+        };
+        let normal = self
+            .interpolated_normal(&moved)
+            .unwrap_or_else(|| self.surface(hit).normal);
+        (duv, normal)
+    }
+
     /// The corners of triangle `prim` (in BVH order).
     fn corners(&self, prim: u32) -> [Vec3A; 3] {
         self.blocks[prim as usize / LANES].corners(prim as usize % LANES)

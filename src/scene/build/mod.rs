@@ -673,6 +673,14 @@ impl Builder<'_> {
                 })
             })
             .collect();
+        let textured = materials
+            .iter()
+            .map(|m| {
+                m.textures()
+                    .iter()
+                    .any(|&t| !matches!(textures[t].pattern, Pattern::Solid(_)))
+            })
+            .collect();
         Scene {
             camera,
             settings,
@@ -694,6 +702,7 @@ impl Builder<'_> {
             transparent,
             transparent_objects,
             needs_uv,
+            textured,
             stats: std::mem::take(&mut self.stats),
             limits: self.limits,
             files: vec![],
@@ -751,6 +760,7 @@ impl Builder<'_> {
                 exposure: self.exposure(d.exposure, &path.key("exposure")),
                 curve: d.tonemap,
             },
+            filter_textures: d.filter_textures,
         }
     }
 
@@ -897,7 +907,7 @@ impl Builder<'_> {
                     space,
                     self.limits.max_texture_pixels,
                 ) {
-                    Ok(img) => Pattern::Image(Arc::new(img)),
+                    Ok(img) => Pattern::Image(Arc::new(img.with_mipmaps())),
                     Err(e) => {
                         self.error_help(
                             path.key("file"),

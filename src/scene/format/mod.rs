@@ -101,6 +101,10 @@ pub struct ImageDef {
     pub exposure: f32,
     /// Tone curve of 8-bit outputs: `clamp` (cut at 1, the default), `reinhard` or `aces`.
     pub tonemap: crate::output::tone::ToneCurve,
+    /// Whether textures are read over the patch of surface each pixel sees (MIP-mapped
+    /// images, filtered checker and stripes), as they should be; `false` reads them at a
+    /// point, which aliases (moire on a far checker), to show the difference.
+    pub filter_textures: bool,
 }
 
 impl Default for ImageDef {
@@ -115,6 +119,7 @@ impl Default for ImageDef {
             seed: 0,
             exposure: 0.0,
             tonemap: crate::output::tone::ToneCurve::Clamp,
+            filter_textures: true,
         }
     }
 }
