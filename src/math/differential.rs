@@ -2,7 +2,7 @@
 //! read over the patch of surface a pixel sees instead of at a point (Igehy 1999, as pbrt
 //! carries them).
 
-use super::{Ray, Vec3A, reflect, refract};
+use super::{Ray, Vec3A, refract};
 
 /// The rays through the neighbouring pixel to the right (`x`) and below (`y`), as offsets
 /// from a ray's origin and direction. Camera rays carry them, scaled down for the samples a
@@ -58,14 +58,17 @@ impl Differentials {
 
     /// The differentials of the ray a perfect mirror sends out, where `ray` met it at a
     /// surface whose unit normal is `n` (either side), with the neighbours meeting it
-    /// `dp` away, where the normal is `n + dn`. Each neighbour is reflected about its own
-    /// normal, as the ray about `n`: the exact mirror of the neighbours, which on a curved
-    /// mirror spread further apart than they came.
+    /// `dp` away, where the normal is `n + dn`: each neighbour mirrored about its own normal,
+    /// to first order (pbrt's), so that a curved mirror spreads them further apart than they
+    /// came. With `wo = -d`, `wi = -wo + 2 (wo . n) n` changes by
+    /// `-dwo + 2 ((wo . n) dn + d(wo . n) n)`.
     pub fn reflected(&self, ray: &Ray, dp: [Vec3A; 2], dn: [Vec3A; 2], n: Vec3A) -> Self {
-        let out = reflect(ray.dir, n);
+        let wo = -ray.dir;
+        let wo_n = wo.dot(n);
         let one = |ddir: Vec3A, dn: Vec3A| {
-            let nn = (n + dn).normalize_or(n);
-            reflect((ray.dir + ddir).normalize_or(ray.dir), nn) - out
+            let dwo = -ddir;
+            let d_wo_n = dwo.dot(n) + wo.dot(dn);
+            -dwo + 2.0 * (wo_n * dn + d_wo_n * n)
         };
         Differentials {
             dx_origin: dp[0],
