@@ -54,6 +54,7 @@ pub fn area_to_solid_angle(pdf: f32, from: Vec3A, point: Vec3A, normal: Vec3A) -
     (d2 > 0.0 && cos > 0.0 && v.is_finite()).then_some(v)
 }
 
+use crate::math::differential::seamless;
 use crate::math::{Aabb, Ray, Vec2, Vec3A};
 
 /// The nearest intersection found by a shape: the ray parameter and which part of the
@@ -219,9 +220,9 @@ impl Shape {
 
     /// How the shape's uv changes from the hit `hit` at `p` to the point `dp` away on its
     /// tangent plane (the patch a pixel sees; zero unless `want_uv`), and the unit normal
-    /// there (the shading normal, for meshes). Analytic shapes difference their uv forward and backward and keep the
-    /// smaller of each, so that a step across a seam (a sphere's `u` going from 1 to 0) does
-    /// not count as a jump.
+    /// there (the shading normal, for meshes). Analytic shapes difference their uv forward
+    /// and backward and keep the smaller of each ([`seamless`]), so that a step across a
+    /// seam (a sphere's `u` going from 1 to 0) does not count as a jump.
     pub fn differential(
         &self,
         p: Vec3A,
@@ -238,9 +239,10 @@ impl Shape {
         }
         let here = self.surface(p, hit, true);
         let behind = self.surface(p - dp, hit, true);
-        let (f, b) = (ahead.uv - here.uv, here.uv - behind.uv);
-        let pick = |f: f32, b: f32| if f.abs() <= b.abs() { f } else { b };
-        (Vec2::new(pick(f.x, b.x), pick(f.y, b.y)), ahead.normal)
+        (
+            seamless(ahead.uv - here.uv, here.uv - behind.uv),
+            ahead.normal,
+        )
     }
 
     /// Object-space bounds; `None` for unbounded shapes (planes).

@@ -2,7 +2,7 @@
 //! read over the patch of surface a pixel sees instead of at a point (Igehy 1999, as pbrt
 //! carries them).
 
-use super::{Ray, Vec3A, refract};
+use super::{Ray, Vec2, Vec3A, refract};
 
 /// The rays through the neighbouring pixel to the right (`x`) and below (`y`), as offsets
 /// from a ray's origin and direction. Camera rays carry them, scaled down for the samples a
@@ -24,6 +24,14 @@ pub struct Differentials {
 /// eighth, so that a high sample count still filters a little (pbrt-v4's rule).
 pub fn camera_scale(spp: u32) -> f32 {
     (1.0 / (spp.max(1) as f32).sqrt()).max(0.125)
+}
+
+/// The change of texture coordinates over a step, from the change `ahead` (stepping
+/// forward) and `behind` (stepping back): of each coordinate the smaller, so that a step
+/// across a seam, where `u` jumps from 1 to 0, does not count as a jump.
+pub fn seamless(ahead: Vec2, behind: Vec2) -> Vec2 {
+    let pick = |a: f32, b: f32| if a.abs() <= b.abs() { a } else { b };
+    Vec2::new(pick(ahead.x, behind.x), pick(ahead.y, behind.y))
 }
 
 /// Where the two neighbouring rays meet the plane through `p` with normal `n`, as offsets

@@ -1,4 +1,5 @@
 use crate::geometry::equirectangular_uv;
+use crate::math::differential::seamless;
 use crate::math::{Frame, Transform, Vec2, Vec3A};
 
 /// What a mapping may need to know about a surface point, all in the object's own space.
@@ -150,7 +151,7 @@ impl Mapping {
     /// Texture coordinates of `p` with how they change to the neighbouring pixels right and
     /// below (zero for a point footprint). The shape's uv carries its own; the others are
     /// the mapping's differences over the footprint, forward and backward, the smaller of
-    /// each: a difference that crosses a seam (where `u` jumps from 1 to 0) is the large one.
+    /// each ([`seamless`]).
     #[inline]
     pub fn uv_footprint(&self, p: &TexturePoint) -> (Vec2, Vec2, Vec2) {
         let uv = self.uv(p);
@@ -170,11 +171,7 @@ impl Mapping {
                         ..*p
                     })
                 };
-                let d = |dp: Vec3A| {
-                    let (ahead, behind) = (at(dp) - uv, uv - at(-dp));
-                    let pick = |a: f32, b: f32| if a.abs() <= b.abs() { a } else { b };
-                    Vec2::new(pick(ahead.x, behind.x), pick(ahead.y, behind.y))
-                };
+                let d = |dp: Vec3A| seamless(at(dp) - uv, uv - at(-dp));
                 (uv, d(f.dpdx), d(f.dpdy))
             }
         }

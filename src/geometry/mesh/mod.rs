@@ -348,9 +348,8 @@ impl Mesh {
     }
 
     /// How the uv changes from a hit at `p` to the point `dp` away from it on the triangle's
-    /// plane,
-    /// and the shading normal there: the barycentrics' change times the corners' uvs (the
-    /// barycentrics themselves where the mesh has no uvs), and the vertex normals
+    /// plane, and the shading normal there: the barycentrics' change times the corners' uvs
+    /// (the barycentrics themselves where the mesh has no uvs), and the vertex normals
     /// interpolated there (the face's normal where the mesh has none).
     pub fn differential(&self, p: Vec3A, hit: &ShapeHit, dp: Vec3A) -> (Vec2, Vec3A) {
         let [a, b, c] = self.corners(hit.prim);
