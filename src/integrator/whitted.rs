@@ -10,7 +10,7 @@ use super::explain::{
 use super::{Integrator, RayStats};
 use crate::light::Light;
 use crate::math::{Color, Ray, Vec3A, fresnel_dielectric, offset_ray_origin, reflect, refract};
-use crate::scene::{Hit, RayDifferentials, Scene, Skip, SurfacePatch};
+use crate::scene::{Hit, RayDifferentials, Scene, Skip};
 
 /// The Whitted integrator.
 #[derive(Clone, Copy, Debug, Default)]
@@ -259,11 +259,6 @@ impl Whitted {
             ..hit.tex
         };
         let tex = &tex;
-        let patch_of = |patch: Option<SurfacePatch>| {
-            let diff = seg.diff.of(scene, ray)?;
-            // (A patch made for the textures has the normals' change wherever rays go on.)
-            Some((diff, patch.or_else(|| scene.patch(hit, ray, &diff, true))?))
-        };
         // Entering or leaving is told by the normal: the outward normal faces the ray when
         // the ray comes from outside.
         let entering = d.dot(hit.normal) < 0.0;
@@ -275,8 +270,19 @@ impl Whitted {
         } else {
             -hit.shading_normal
         };
-        // The patch's normal changes are the outward normal's: turned with it.
+        // What the reflected and refracted rays' differentials start from: the ray's, the
+        // patch's offsets, and its normal's changes turned with `ns` (they are the outward
+        // normal's). Worked out once, for whichever child asks first; a patch made for the
+        // textures has the normal's change wherever rays go on.
         let side = if entering { 1.0 } else { -1.0 };
+        let passed = std::cell::OnceCell::new();
+        let passed_on = || {
+            *passed.get_or_init(|| {
+                let diff = seg.diff.of(scene, ray)?;
+                let p = patch.or_else(|| scene.patch(hit, ray, &diff, true))?;
+                Some((diff, p.dp, p.dn.map(|v| v * side)))
+            })
+        };
         let base = scene.textures[m.texture].eval(tex);
         let above = offset_ray_origin(hit.point, n);
         // Rays from `above` leave through the outside exactly when the ray came from there.
@@ -420,9 +426,8 @@ impl Whitted {
                     medium: inside,
                     weight,
                     skip: scene.leaving(hit, !entering),
-                    diff: patch_of(patch).map_or(RayDifferentials::None, |(diff, p)| {
-                        let dn = p.dn.map(|v| v * side);
-                        RayDifferentials::Known(diff.refracted(ray, dir, p.dp, dn, ns, eta))
+                    diff: passed_on().map_or(RayDifferentials::None, |(diff, dp, dn)| {
+                        RayDifferentials::Known(diff.refracted(ray, dir, dp, dn, ns, eta))
                     }),
                 };
                 out += self.trace_from(scene, &Ray::new(below, dir), &child, rays, rec) * weight;
@@ -442,9 +447,8 @@ impl Whitted {
                 medium: seg.medium,
                 weight: reflect_weight,
                 skip: skip_above,
-                diff: patch_of(patch).map_or(RayDifferentials::None, |(diff, p)| {
-                    let dn = p.dn.map(|v| v * side);
-                    RayDifferentials::Known(diff.reflected(ray, p.dp, dn, ns))
+                diff: passed_on().map_or(RayDifferentials::None, |(diff, dp, dn)| {
+                    RayDifferentials::Known(diff.reflected(ray, dp, dn, ns))
                 }),
             };
             out += self.trace_from(scene, &r, &child, rays, rec) * reflect_weight;
