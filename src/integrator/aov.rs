@@ -171,7 +171,9 @@ fn sample(scene: &Scene, x: u32, y: u32) -> Sample {
             material: -1,
             bounces,
         },
-        Some(hit) => {
+        Some(mut hit) => {
+            let tex = hit.tex;
+            scene.with_detail(&mut hit, &tex);
             let m = scene.material_at(&hit);
             let uv = scene.texture_uv(&hit);
             Sample {

@@ -85,7 +85,7 @@ impl Path {
         rays.camera += 1;
         loop {
             rays.deepest = rays.deepest.max(depth);
-            let Some(hit) = scene.closest_hit_skipping(&ray, f32::INFINITY, skip) else {
+            let Some(mut hit) = scene.closest_hit_skipping(&ray, f32::INFINITY, skip) else {
                 let c = beta * self.escaped(scene, &ray, depth, specular, prev_pdf);
                 l += c;
                 if R::ACTIVE {
@@ -150,6 +150,7 @@ impl Path {
                 }
                 break;
             }
+            scene.with_detail(&mut hit, &tex);
             let base = scene.textures[m.texture].eval(&tex);
             let frame = Frame::from_axis(hit.shading_normal);
             let v = Vertex {

@@ -259,6 +259,9 @@ impl Whitted {
             ..hit.tex
         };
         let tex = &tex;
+        let mut detailed = *hit;
+        scene.with_detail(&mut detailed, tex);
+        let hit = &detailed;
         // Entering or leaving is told by the normal: the outward normal faces the ray when
         // the ray comes from outside.
         let entering = d.dot(hit.normal) < 0.0;

@@ -4,6 +4,7 @@
 //! [`Bsdf`] at each hit from the material's [`Surface`] and its textures. One file per type.
 
 pub mod conductor;
+pub mod detail;
 pub mod dielectric;
 pub mod diffuse;
 pub mod param;
@@ -39,6 +40,8 @@ pub struct Material {
     /// The Phong terms read from textures, where the file names textures for them (the
     /// constants above are used elsewhere).
     pub textured: Option<Box<TexturedTerms>>,
+    /// A normal or bump map bending the shading normal, if any.
+    pub detail: Option<detail::SurfaceDetail>,
 }
 
 /// The Phong terms at a surface point: the material's constants, or its textures read
@@ -203,6 +206,7 @@ impl Material {
         if let Some(e) = &self.emission {
             color(&e.radiance);
         }
+        out.extend(self.detail.map(|d| d.texture()));
         if let Some(t) = &self.textured {
             out.extend(
                 [
@@ -249,6 +253,7 @@ impl Material {
             surface,
             emission,
             textured: None,
+            detail: None,
         }
     }
 }

@@ -22,6 +22,9 @@ pub struct MeshData {
     pub normals: Vec<[f32; 3]>,
     /// Per-vertex texture coordinates (same length as `positions`), or empty.
     pub uvs: Vec<[f32; 2]>,
+    /// Per-vertex tangents (glTF's `TANGENT`: unit `xyz`, the bitangent's sign in `w`),
+    /// or empty.
+    pub tangents: Vec<[f32; 4]>,
     /// Triangles as indices into `positions` (and `normals` and `uvs`), in file winding order.
     pub triangles: Vec<[u32; 3]>,
     /// Per-triangle index into `materials`, or empty when no materials are used.
@@ -92,6 +95,7 @@ impl MeshData {
             positions,
             normals,
             uvs,
+            tangents,
             triangles,
             triangle_materials,
             materials,
@@ -123,6 +127,7 @@ impl MeshData {
                 .collect(),
             triangles,
             triangle_slots: triangle_materials.iter().map(|&m| m as u16).collect(),
+            tangents,
         };
         Ok((input, materials))
     }

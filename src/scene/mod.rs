@@ -2,6 +2,7 @@
 //! and shared by every render thread.
 
 mod build;
+mod detail;
 mod diag;
 mod footprint;
 pub mod format;
@@ -11,6 +12,7 @@ mod meshes;
 mod mtl;
 
 pub use build::{MAX_MAGNITUDE, load, load_str, load_with};
+pub use detail::UvFrame;
 pub use diag::{DocPath, Format, Problem, SceneDiagnostic, SceneError, Seg, did_you_mean};
 pub use footprint::{RayDifferentials, SurfacePatch};
 pub use format::{IntegratorKind, schema};

@@ -6,6 +6,7 @@ mod bad;
 mod camera;
 mod cli;
 mod csg;
+mod detail;
 mod docs;
 mod environment;
 mod explain;

@@ -402,9 +402,13 @@ type = "dielectric"
 ior = 1.5
 roughness = 0.1
 absorption = [0.1, 0, 0]
+normal_map = "photo"
+normal_scale = 0.5
 [materials.pane]
 type = "thin"
 ior = 1.5
+bump = "wrapped"
+bump_height = 0.01
 [materials.coat]
 type = "plastic"
 color = [0.8, 0.1, 0.1]

@@ -3,6 +3,8 @@
 //! watertight triangle tests, and per-vertex normals and uvs. A mesh is shared
 //! (`Arc`) by every object that places it, so a thousand instances cost one copy.
 
+mod tangents;
+
 use super::triangle::{BlockRay, LANES, TriangleBlock};
 use super::{ShapeHit, Surface};
 use crate::accel::wide::collapse::collapse;
@@ -28,6 +30,9 @@ pub struct MeshInput {
     pub triangles: Vec<[u32; 3]>,
     /// Per triangle, the index of its material slot (see [`Mesh::slots`]), or empty.
     pub triangle_slots: Vec<u16>,
+    /// Per-vertex tangents (unit `xyz`, the bitangent's sign in `w`: see `tangents`), or
+    /// empty.
+    pub tangents: Vec<[f32; 4]>,
 }
 
 /// A triangle mesh arranged for ray queries.
@@ -51,6 +56,9 @@ pub struct Mesh {
     uvs: Vec<Vec2>,
     /// Material slot of each triangle, in BVH order, or empty.
     slots: Vec<u16>,
+    /// Per corner of each triangle (`3 prim + k`), where a file gave them or a normal map
+    /// asked for them ([`Mesh::ensure_tangents`]).
+    tangents: std::sync::OnceLock<Vec<tangents::Tangent>>,
     bvh: WideBvh,
     bounds: Aabb,
     /// Time spent building the BVH.
@@ -68,6 +76,7 @@ impl Mesh {
             uvs,
             triangles,
             triangle_slots,
+            tangents,
         } = input;
         if triangles.len() > MAX_TRIANGLES {
             return Err(format!(
@@ -86,6 +95,13 @@ impl Mesh {
             return Err(format!(
                 "{} uvs for {} vertices",
                 uvs.len(),
+                positions.len()
+            ));
+        }
+        if !tangents.is_empty() && tangents.len() != positions.len() {
+            return Err(format!(
+                "{} tangents for {} vertices",
+                tangents.len(),
                 positions.len()
             ));
         }
@@ -195,6 +211,10 @@ impl Mesh {
         } else {
             order.iter().map(|&i| triangle_slots[i]).collect()
         };
+        let corner_tangents = std::sync::OnceLock::new();
+        if !tangents.is_empty() {
+            let _ = corner_tangents.set(Mesh::corners_of(&faces, &tangents));
+        }
         let bvh = WideBvh {
             nodes: wide.nodes,
             depth: wide.depth,
@@ -208,6 +228,7 @@ impl Mesh {
                 normals,
                 uvs,
                 slots,
+                tangents: corner_tangents,
                 bvh,
                 bounds,
                 build_time: start.elapsed(),
@@ -244,6 +265,7 @@ impl Mesh {
             + self.uvs.len() * 8
             + self.slots.len() * 2
             + self.filled.len()
+            + self.tangents.get().map_or(0, |t| t.len() * 16)
     }
 
     /// Every triangle once (unfilled lanes left out), as `(prim, corners)` in object space,

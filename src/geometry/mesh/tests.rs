@@ -218,7 +218,7 @@ fn smooth_normals_and_uvs_are_interpolated() {
         normals: vec![Vec3::Z, Vec3::new(1.0, 0.0, 1.0).normalize(), Vec3::Z],
         uvs: vec![Vec2::ZERO, Vec2::new(1.0, 0.0), Vec2::new(0.0, 2.0)],
         triangles: vec![[0, 1, 2]],
-        triangle_slots: vec![],
+        ..Default::default()
     };
     let (m, _) = Mesh::new(input).unwrap();
     let h = m
@@ -425,4 +425,82 @@ fn coincident_triangles_are_all_found_through_a_deep_bvh() {
             assert!(m.occluded(&ray, f32::INFINITY), "{ray:?}");
         }
     }
+}
+
+/// A quad in the plane z = 0 facing +z, its uv laid on it with `u` along `u_dir` and `v`
+/// (down the image) along `v_dir`, wound counter-clockwise seen from +z.
+fn quad(u_dir: Vec3, v_dir: Vec3) -> Mesh {
+    let corners = [Vec2::ZERO, Vec2::X, Vec2::ONE, Vec2::Y];
+    let triangles = if u_dir.cross(v_dir).z > 0.0 {
+        vec![[0, 1, 2], [0, 2, 3]]
+    } else {
+        vec![[0, 2, 1], [0, 3, 2]]
+    };
+    let (m, _) = Mesh::new(MeshInput {
+        positions: corners.iter().map(|c| u_dir * c.x + v_dir * c.y).collect(),
+        normals: vec![Vec3::Z; 4],
+        uvs: corners.to_vec(),
+        triangles,
+        ..Default::default()
+    })
+    .unwrap();
+    m
+}
+
+#[test]
+fn mikktspace_tangents_follow_u_and_the_bitangent_points_up_the_image() {
+    // u along +x, v (down the image) along -y: the image lies upright, seen from +z.
+    let m = quad(Vec3::X, Vec3::NEG_Y);
+    assert!(!m.has_tangents());
+    m.ensure_tangents();
+    assert!(m.has_tangents());
+    for p in [Vec3A::new(0.7, -0.2, 0.0), Vec3A::new(0.2, -0.7, 0.0)] {
+        let prim = m
+            .intersect(&Ray::new(p + Vec3A::Z, Vec3A::NEG_Z), 10.0)
+            .unwrap()
+            .prim;
+        let (t, b) = m.tangent_frame(p, prim).unwrap();
+        assert!((t - Vec3A::X).length() < 1e-5, "{t}");
+        assert!((b - Vec3A::Y).length() < 1e-5, "{b}");
+    }
+    // The image mirrored (v down along +y): up the image is now -y, and the frame is
+    // left-handed.
+    let m = quad(Vec3::X, Vec3::Y);
+    m.ensure_tangents();
+    let p = Vec3A::new(0.7, 0.2, 0.0);
+    let prim = m
+        .intersect(&Ray::new(p + Vec3A::Z, Vec3A::NEG_Z), 10.0)
+        .unwrap()
+        .prim;
+    let (t, b) = m.tangent_frame(p, prim).unwrap();
+    assert!((t - Vec3A::X).length() < 1e-5, "{t}");
+    assert!((b - Vec3A::NEG_Y).length() < 1e-5, "{b}");
+}
+
+#[test]
+fn a_files_tangents_are_kept_and_made_orthogonal_to_the_normal() {
+    let (m, _) = Mesh::new(MeshInput {
+        positions: vec![Vec3::ZERO, Vec3::X, Vec3::Y],
+        normals: vec![Vec3::Z; 3],
+        uvs: vec![Vec2::ZERO, Vec2::X, Vec2::Y],
+        triangles: vec![[0, 1, 2]],
+        // Tilted out of the plane, and with a negative sign.
+        tangents: vec![[0.0, 0.6, 0.8, -1.0]; 3],
+        ..Default::default()
+    })
+    .unwrap();
+    assert!(m.has_tangents());
+    let (t, b) = m.tangent_frame(Vec3A::new(0.2, 0.2, 0.0), 0).unwrap();
+    assert!((t - Vec3A::Y).length() < 1e-5, "{t}");
+    assert!((b - Vec3A::X).length() < 1e-5, "{b}");
+    // A count that does not match the vertices is refused.
+    assert!(
+        Mesh::new(MeshInput {
+            positions: vec![Vec3::ZERO, Vec3::X, Vec3::Y],
+            triangles: vec![[0, 1, 2]],
+            tangents: vec![[1.0, 0.0, 0.0, 1.0]; 2],
+            ..Default::default()
+        })
+        .is_err()
+    );
 }

@@ -3,6 +3,7 @@
 
 use super::Builder;
 use crate::bsdf::{ConductorFresnel, metals};
+use crate::material::detail::SurfaceDetail;
 use crate::material::{self, ColorParam, Emission, Material, Scalar, TexturedTerms};
 use crate::math::Color;
 use crate::scene::diag::{DocPath, did_you_mean};
@@ -74,6 +75,24 @@ impl Builder<'_> {
         let absorption = m
             .absorption
             .map_or(Color::ZERO, |c| self.color(c, &path.key("absorption")));
+        let detail = self.detail(m, path, tex);
+        let mut out = self.surface(m, path, tex, (texture, color), emission, ior, absorption);
+        out.detail = detail;
+        out
+    }
+
+    /// The material of `m`'s type, from what the keys every type shares gave.
+    #[allow(clippy::too_many_arguments)]
+    fn surface(
+        &mut self,
+        m: &MaterialDef,
+        path: &DocPath,
+        tex: &mut MaterialTextures,
+        (texture, color): (usize, Color),
+        emission: Option<Emission>,
+        ior: f32,
+        absorption: Color,
+    ) -> Material {
         let (roughness, alpha) = self.roughness(&m.roughness, &path.key("roughness"), tex);
         match m.kind {
             MaterialKind::Phong => {
@@ -146,6 +165,63 @@ impl Builder<'_> {
             MaterialKind::Thin => material::thin::material(texture, ior, emission),
             MaterialKind::Plastic => material::plastic::Plastic::new(roughness, ior)
                 .material(texture, ior, alpha, emission),
+        }
+    }
+
+    /// The normal or bump map, if the material has one.
+    fn detail(
+        &mut self,
+        m: &MaterialDef,
+        path: &DocPath,
+        tex: &mut MaterialTextures,
+    ) -> Option<SurfaceDetail> {
+        let orphan = |b: &mut Self, given: bool, key: &str, needs: &str| {
+            if given {
+                b.error_help(
+                    path.key(key),
+                    format!(
+                        "`{key}` says how strong `{needs}` is, and this material has no `{needs}`"
+                    ),
+                    format!("add `{needs} = \"TEXTURE\"`, or remove `{key}`"),
+                );
+            }
+        };
+        orphan(
+            self,
+            m.normal_scale.is_some() && m.normal_map.is_none(),
+            "normal_scale",
+            "normal_map",
+        );
+        orphan(
+            self,
+            m.bump_height.is_some() && m.bump.is_none(),
+            "bump_height",
+            "bump",
+        );
+        match (&m.normal_map, &m.bump) {
+            (Some(_), Some(_)) => {
+                self.error_help(
+                    path.key("bump"),
+                    "a material takes `normal_map` or `bump`, not both",
+                    "remove one of them",
+                );
+                None
+            }
+            (Some(name), None) => {
+                let texture = self.texture_named(name, &path.key("normal_map"), tex)?;
+                let scale = m
+                    .normal_scale
+                    .map_or(1.0, |x| self.finite(x, &path.key("normal_scale")));
+                Some(SurfaceDetail::Normal { texture, scale })
+            }
+            (None, Some(name)) => {
+                let texture = self.texture_named(name, &path.key("bump"), tex)?;
+                let height = m
+                    .bump_height
+                    .map_or(1.0, |x| self.finite(x, &path.key("bump_height")));
+                Some(SurfaceDetail::Bump { texture, height })
+            }
+            (None, None) => None,
         }
     }
 

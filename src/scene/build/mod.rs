@@ -9,6 +9,7 @@ use crate::accel::Bvh;
 use crate::film::Filter;
 use crate::geometry::{Cone, Cuboid, Cylinder, Disk, Plane, Rect, Shape, Sphere, Torus, Triangle};
 use crate::light::{Light, LightSampler};
+use crate::material::detail::SurfaceDetail;
 use crate::math::{Color, Frame, Transform, Vec3, Vec3A};
 use crate::sampler::SamplerKind;
 use crate::texture::{ColorSpace, ImageData, Mapping, Pattern, Texture};
@@ -497,10 +498,29 @@ impl Builder<'_> {
 
         let mut textures = vec![];
         let mut texture_names = BTreeMap::new();
+        // Textures a material reads as a normal or bump map hold data, not colours.
+        let data: std::collections::BTreeSet<&str> = def
+            .materials
+            .values()
+            .flat_map(|m| [&m.normal_map, &m.bump])
+            .flatten()
+            .map(String::as_str)
+            .collect();
         for (name, t) in &def.textures {
             let path = root.key("textures").key(name);
             texture_names.insert(name.clone(), textures.len());
-            textures.push(self.texture(t, &path));
+            let data = data.contains(name.as_str());
+            if data
+                && let TextureDef::Image {
+                    color_space: Some(ColorSpaceDef::Srgb),
+                    ..
+                } = t
+            {
+                self.warnings.push(format!(
+                    "texture `{name}` is a normal or bump map but says color_space = \"srgb\": such maps hold data, stored linear"
+                ));
+            }
+            textures.push(self.texture(t, &path, data));
         }
         let mut used_textures = vec![false; textures.len()];
 
@@ -653,6 +673,18 @@ impl Builder<'_> {
                 o.slot_materials.clone()
             }
         };
+        // Meshes a normal map reads through their own uv get tangents (MikkTSpace's where the
+        // file gave none).
+        for o in &objects {
+            if let Shape::Mesh(m) = &o.shape
+                && materials_of(o).iter().any(|&i| {
+                    matches!(materials[i].detail, Some(SurfaceDetail::Normal { texture, .. })
+                        if matches!(textures[texture].mapping, Mapping::Uv))
+                })
+            {
+                m.ensure_tangents();
+            }
+        }
         let transparent: Vec<bool> = objects
             .iter()
             .map(|o| {
@@ -887,7 +919,9 @@ impl Builder<'_> {
         }
     }
 
-    fn texture(&mut self, d: &TextureDef, path: &DocPath) -> Texture {
+    /// A texture; `data` says a material reads it as a normal or bump map, which an image
+    /// without a `color_space` is then read as (linear).
+    fn texture(&mut self, d: &TextureDef, path: &DocPath, data: bool) -> Texture {
         match d {
             TextureDef::Solid { color } => Texture::solid(self.color(*color, &path.key("color"))),
             TextureDef::Image {
@@ -899,8 +933,10 @@ impl Builder<'_> {
                 let full = self.base_dir.join(file);
                 self.files.push(full.clone());
                 let space = match color_space {
-                    ColorSpaceDef::Srgb => ColorSpace::Srgb,
-                    ColorSpaceDef::Linear => ColorSpace::Linear,
+                    Some(ColorSpaceDef::Srgb) => ColorSpace::Srgb,
+                    Some(ColorSpaceDef::Linear) => ColorSpace::Linear,
+                    None if data => ColorSpace::Linear,
+                    None => ColorSpace::Srgb,
                 };
                 let pattern = match ImageData::load_limited(
                     &full,

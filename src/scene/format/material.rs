@@ -103,6 +103,16 @@ pub struct MaterialDef {
     pub emission: Option<ColorParamDef>,
     /// Whether `emission` leaves both sides (default: the front side only).
     pub two_sided: Option<bool>,
+    /// Name of a texture holding a tangent-space normal map (any type; read as linear data
+    /// unless the texture says `color_space`).
+    pub normal_map: Option<String>,
+    /// Factor on the normal map's tangent components (default 1; 0 flattens it).
+    pub normal_scale: Option<f32>,
+    /// Name of a texture holding a bump (height) map (any type; the mean of r, g, b is the
+    /// height; read as linear data unless the texture says `color_space`).
+    pub bump: Option<String>,
+    /// Scene units of height per unit of the bump map's value (default 1).
+    pub bump_height: Option<f32>,
 }
 
 /// A key of [`MaterialDef`], for checking which type reads it.

@@ -243,9 +243,10 @@ pub enum TextureDef {
     Image {
         /// Path, relative to the scene file's folder.
         file: String,
-        /// How to decode its values.
+        /// How to decode its values (default: `srgb`, or `linear` for a texture a material
+        /// uses as a normal or bump map).
         #[serde(default)]
-        color_space: ColorSpaceDef,
+        color_space: Option<ColorSpaceDef>,
         /// Placement.
         #[serde(default)]
         mapping: MappingDef,
