@@ -54,6 +54,29 @@ pub struct GltfInstance {
     pub matrix: [[f32; 4]; 4],
 }
 
+/// A texture a material reads: its image, its uv set, and KHR_texture_transform's.
+#[derive(Clone, Debug, PartialEq)]
+pub struct TextureRef {
+    /// Index into [`GltfScene::images`].
+    pub image: usize,
+    /// Which texture coordinates it reads (0 or 1).
+    pub texcoord: u32,
+    /// KHR_texture_transform as `uv' = m[0] u + m[1] v + m[2]` (glTF's uv, `v` down the
+    /// image, as snell's), or `None`.
+    pub transform: Option<[[f32; 2]; 3]>,
+}
+
+/// How a material's alpha is read (glTF's `alphaMode`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Alpha {
+    /// Alpha is ignored.
+    Opaque,
+    /// Alpha below the cutoff is a hole.
+    Mask(f32),
+    /// Alpha blends the surface with what lies behind it.
+    Blend,
+}
+
 /// A metallic-roughness material, as far as snell reads it.
 #[derive(Clone, Debug, PartialEq)]
 pub struct PbrMaterial {
@@ -61,22 +84,33 @@ pub struct PbrMaterial {
     pub name: String,
     /// Linear RGBA.
     pub base_color: [f32; 4],
-    /// The image of the base colour (sRGB), by index into [`GltfScene::images`], if any.
-    pub base_color_image: Option<usize>,
-    /// Which texture coordinates the base colour reads (0 or 1).
-    pub base_color_texcoord: u32,
+    /// The base colour's image (sRGB), if any.
+    pub base_color_texture: Option<TextureRef>,
     /// 0 dielectric, 1 metal.
     pub metallic: f32,
     /// Perceptual roughness (GGX alpha is its square).
     pub roughness: f32,
+    /// The metallic (blue) and roughness (green) image (linear), if any: factors on
+    /// `metallic` and `roughness`.
+    pub metallic_roughness_texture: Option<TextureRef>,
+    /// The tangent-space normal map (linear), if any.
+    pub normal_texture: Option<TextureRef>,
+    /// Factor on the normal map's x and y.
+    pub normal_scale: f32,
+    /// Whether it has an occlusion map (which snell does not read).
+    pub occlusion: bool,
     /// Emitted radiance, linear RGB (the factor times KHR_materials_emissive_strength).
     pub emissive: [f32; 3],
+    /// The emissive image (sRGB), if any, times `emissive`.
+    pub emissive_texture: Option<TextureRef>,
     /// KHR_materials_transmission's factor.
     pub transmission: f32,
     /// KHR_materials_ior's, 1.5 by default.
     pub ior: f32,
     /// Whether the back side is shaded too.
     pub double_sided: bool,
+    /// `alphaMode` (with `alphaCutoff`).
+    pub alpha: Alpha,
 }
 
 impl Default for PbrMaterial {
@@ -85,15 +119,34 @@ impl Default for PbrMaterial {
         PbrMaterial {
             name: "default".into(),
             base_color: [1.0; 4],
-            base_color_image: None,
-            base_color_texcoord: 0,
+            base_color_texture: None,
             metallic: 1.0,
             roughness: 1.0,
+            metallic_roughness_texture: None,
+            normal_texture: None,
+            normal_scale: 1.0,
+            occlusion: false,
             emissive: [0.0; 3],
+            emissive_texture: None,
             transmission: 0.0,
             ior: 1.5,
             double_sided: false,
+            alpha: Alpha::Opaque,
         }
+    }
+}
+
+impl PbrMaterial {
+    /// The textures it reads.
+    pub fn textures(&self) -> impl Iterator<Item = &TextureRef> {
+        [
+            &self.base_color_texture,
+            &self.metallic_roughness_texture,
+            &self.normal_texture,
+            &self.emissive_texture,
+        ]
+        .into_iter()
+        .flatten()
     }
 }
 
@@ -223,8 +276,10 @@ pub fn parse(bytes: &[u8], path: &Path) -> Result<GltfScene, MeshError> {
     // The images the used materials show, decoded.
     let mut wanted = vec![false; document.images().len()];
     for (m, used) in out.materials.iter().zip(&used_materials) {
-        if let (Some(i), true) = (m.base_color_image, used) {
-            wanted[i] = true;
+        if *used {
+            for t in m.textures() {
+                wanted[t.image] = true;
+            }
         }
     }
     for image in document.images() {
@@ -405,6 +460,7 @@ fn read_mesh(
     let mut any_normals = false;
     let mut normals: Vec<Option<[f32; 3]>> = vec![];
     let mut uvs: Vec<Option<[f32; 2]>> = vec![];
+    let mut tangents: Vec<Option<[f32; 4]>> = vec![];
     for (p, prim) in mesh.primitives().enumerate() {
         let mode = prim.mode();
         if !matches!(
@@ -437,9 +493,19 @@ fn read_mesh(
             Some(it) => uvs.extend(it.into_f32().map(|[u, v]| Some([u, 1.0 - v]))),
             None => uvs.extend(std::iter::repeat_n(None, n)),
         }
+        match reader.read_tangents() {
+            Some(it) => tangents.extend(it.map(Some)),
+            None => tangents.extend(std::iter::repeat_n(None, n)),
+        }
+        if prim.get(&gltf::mesh::Semantic::Colors(0)).is_some() {
+            warnings.push(format!(
+                "{name}: primitive {p} has vertex colours (COLOR_0), which snell does not read"
+            ));
+        }
         // Attributes shorter or longer than the positions: each kept to the positions'.
         normals.resize(base + n, None);
         uvs.resize(base + n, None);
+        tangents.resize(base + n, None);
         let indices: Vec<u32> = match reader.read_indices() {
             Some(i) => i.into_u32().collect(),
             None => (0..n as u32).collect(),
@@ -487,6 +553,18 @@ fn read_mesh(
     if uvs.iter().any(Option::is_some) {
         data.uvs = uvs.into_iter().map(|t| t.unwrap_or([0.0; 2])).collect();
     }
+    // Tangents only where every vertex has one (a mesh of primitives with and without
+    // them gets MikkTSpace's throughout), each made unit with its sign kept to +-1.
+    if !tangents.is_empty() && tangents.iter().all(Option::is_some) {
+        data.tangents = tangents
+            .into_iter()
+            .flatten()
+            .map(|[x, y, z, w]| {
+                let t = glam::Vec3::new(x, y, z).normalize_or(glam::Vec3::X);
+                [t.x, t.y, t.z, if w < 0.0 { -1.0 } else { 1.0 }]
+            })
+            .collect();
+    }
     Ok(GltfMesh { name, data, slots })
 }
 
@@ -496,9 +574,10 @@ fn read_mesh(
 fn check_layouts(prim: &gltf::Primitive) -> Result<(), String> {
     use gltf::accessor::{DataType as T, Dimensions as D};
     use gltf::mesh::Semantic as S;
-    let checks: [(S, &str, D, &[T]); 3] = [
+    let checks: [(S, &str, D, &[T]); 4] = [
         (S::Positions, "POSITION", D::Vec3, &[T::F32]),
         (S::Normals, "NORMAL", D::Vec3, &[T::F32]),
+        (S::Tangents, "TANGENT", D::Vec4, &[T::F32]),
         (
             S::TexCoords(0),
             "TEXCOORD_0",
@@ -534,25 +613,77 @@ fn check_layouts(prim: &gltf::Primitive) -> Result<(), String> {
 fn material(m: &gltf::Material) -> PbrMaterial {
     let pbr = m.pbr_metallic_roughness();
     let strength = m.emissive_strength().unwrap_or(1.0);
-    let (base_color_image, base_color_texcoord) = match pbr.base_color_texture() {
-        Some(info) => (Some(info.texture().source().index()), info.tex_coord()),
-        None => (None, 0),
+    let info = |i: gltf::texture::Info| {
+        let t = i.texture_transform();
+        TextureRef {
+            image: i.texture().source().index(),
+            texcoord: t
+                .as_ref()
+                .and_then(|t| t.tex_coord())
+                .unwrap_or(i.tex_coord()),
+            transform: t.map(|t| uv_transform(t.offset(), t.rotation(), t.scale())),
+        }
     };
+    let normal = m.normal_texture();
     PbrMaterial {
         name: m.name().map_or_else(
             || format!("material {}", m.index().unwrap_or(0)),
             str::to_string,
         ),
         base_color: pbr.base_color_factor(),
-        base_color_image,
-        base_color_texcoord,
+        base_color_texture: pbr.base_color_texture().map(info),
         metallic: pbr.metallic_factor(),
         roughness: pbr.roughness_factor(),
+        metallic_roughness_texture: pbr.metallic_roughness_texture().map(info),
+        normal_scale: normal.as_ref().map_or(1.0, |n| n.scale()),
+        normal_texture: normal.map(|n| TextureRef {
+            image: n.texture().source().index(),
+            texcoord: n.tex_coord(),
+            transform: json_transform(n.extension_value("KHR_texture_transform")),
+        }),
+        occlusion: m.occlusion_texture().is_some(),
         emissive: m.emissive_factor().map(|e| e * strength),
+        emissive_texture: m.emissive_texture().map(info),
         transmission: m.transmission().map_or(0.0, |t| t.transmission_factor()),
         ior: m.ior().unwrap_or(1.5),
         double_sided: m.double_sided(),
+        alpha: match m.alpha_mode() {
+            gltf::material::AlphaMode::Opaque => Alpha::Opaque,
+            gltf::material::AlphaMode::Mask => Alpha::Mask(m.alpha_cutoff().unwrap_or(0.5)),
+            gltf::material::AlphaMode::Blend => Alpha::Blend,
+        },
     }
+}
+
+/// KHR_texture_transform's offset, rotation (radians, counter-clockwise) and scale as a
+/// matrix on uv: scale, then rotate, then offset, as the extension composes them.
+pub fn uv_transform(offset: [f32; 2], rotation: f32, scale: [f32; 2]) -> [[f32; 2]; 3] {
+    let (s, c) = rotation.sin_cos();
+    // u' = c su u + s sv v + ou;  v' = -s su u + c sv v + ov.
+    [
+        [c * scale[0], -s * scale[0]],
+        [s * scale[1], c * scale[1]],
+        offset,
+    ]
+}
+
+/// KHR_texture_transform read from a texture's extension JSON (the `gltf` crate reads it
+/// only for plain texture references, not a normal map's).
+fn json_transform(v: Option<&gltf::json::Value>) -> Option<[[f32; 2]; 3]> {
+    let v = v?;
+    let pair = |key: &str, default: [f32; 2]| {
+        v.get(key)
+            .and_then(|a| a.as_array())
+            .filter(|a| a.len() == 2)
+            .and_then(|a| Some([a[0].as_f64()? as f32, a[1].as_f64()? as f32]))
+            .unwrap_or(default)
+    };
+    let rotation = v.get("rotation").and_then(|r| r.as_f64()).unwrap_or(0.0) as f32;
+    Some(uv_transform(
+        pair("offset", [0.0, 0.0]),
+        rotation,
+        pair("scale", [1.0, 1.0]),
+    ))
 }
 
 /// A decoded glTF image as an `image` crate image (8- and 16-bit, and float).

@@ -77,6 +77,12 @@ impl TexturePoint<'static> {
 pub enum Mapping {
     /// The shape's own uv (see each shape in docs/scene-format.md).
     Uv,
+    /// The shape's own uv through an affine map, `uv' = m[0] u + m[1] v + m[2]` (glTF's
+    /// KHR_texture_transform).
+    UvTransform {
+        /// The map's columns: the images of `u` and `v`, and the offset.
+        m: [Vec2; 3],
+    },
     /// Equirectangular, around `center`: longitude 0 faces +z, east (+x) is to the right,
     /// the north pole (+y) is `v = 0`. `rotation` turns the texture on the sphere.
     Spherical {
@@ -122,6 +128,7 @@ impl Mapping {
     pub fn uv(&self, p: &TexturePoint) -> Vec2 {
         match self {
             Mapping::Uv => p.uv,
+            Mapping::UvTransform { m } => m[0] * p.uv.x + m[1] * p.uv.y + m[2],
             Mapping::Spherical { center, rotation } => {
                 let mut d = p.point - center.unwrap_or(p.center);
                 if let Some(r) = rotation {
@@ -160,6 +167,10 @@ impl Mapping {
         };
         match self {
             Mapping::Uv => (uv, f.duvdx, f.duvdy),
+            Mapping::UvTransform { m } => {
+                let d = |duv: Vec2| m[0] * duv.x + m[1] * duv.y;
+                (uv, d(f.duvdx), d(f.duvdy))
+            }
             Mapping::Planar { u_axis, v_axis, .. } => {
                 let d = |dp: Vec3A| Vec2::new(dp.dot(*u_axis), dp.dot(*v_axis));
                 (uv, d(f.dpdx), d(f.dpdy))
@@ -174,6 +185,24 @@ impl Mapping {
                 let d = |dp: Vec3A| seamless(at(dp) - uv, uv - at(-dp));
                 (uv, d(f.dpdx), d(f.dpdy))
             }
+        }
+    }
+
+    /// Whether it reads the shape's own uv.
+    pub fn reads_shape_uv(&self) -> bool {
+        matches!(self, Mapping::Uv | Mapping::UvTransform { .. })
+    }
+
+    /// Whether its `u` and `v` grow the ways the shape's own do (the shape's uv, offset or
+    /// scaled by positive factors): a mesh's tangents then serve a normal map read
+    /// through it.
+    pub fn keeps_uv_axes(&self) -> bool {
+        match self {
+            Mapping::Uv => true,
+            Mapping::UvTransform { m } => {
+                m[0].y == 0.0 && m[1].x == 0.0 && m[0].x > 0.0 && m[1].y > 0.0
+            }
+            _ => false,
         }
     }
 

@@ -151,3 +151,61 @@ fn the_objects_transform_and_material_apply_to_every_part() {
         assert_eq!(scene.material_names[o.material], "grey");
     }
 }
+
+/// Every map of a metallic-roughness material (tests/data/gltf/pbr-maps.gltf): the base
+/// colour through its KHR_texture_transform, roughness from the green channel, the normal
+/// map in MikkTSpace's frame or the file's TANGENT, and the emissive map times its factor and
+/// strength.
+#[test]
+fn every_map_of_a_material_is_read() {
+    use snell::material::detail::SurfaceDetail;
+    use snell::material::{ColorParam, Scalar, Surface};
+    let scene = scene_with("pbr-maps.gltf", "");
+    let plain = hit(&scene, [-2.25, 0.1, 5.0], [0.0, 0.0, -1.0]);
+    let m = scene.material_at(&plain);
+    // u = 0.25 would read the red half; offset by 0.5 it reads the white one.
+    let base = scene.textures[m.texture].eval(&plain.tex);
+    assert!((base - Color::ONE).abs().max_element() < 1e-3, "{base}");
+    // The map's blue (metallic) is 0: a dielectric, though the factor is 1. Its green 128
+    // is 0.502 linear: roughness 0.8 x 0.502, alpha its square.
+    let Surface::Plastic(p) = &m.surface else {
+        panic!("a map of metallic 0 makes plastic: {:?}", m.surface)
+    };
+    let Scalar::Texture(r) = p.roughness else {
+        panic!("roughness is read from the map")
+    };
+    let alpha = scene.textures[r].eval(&plain.tex).x;
+    assert!(
+        (alpha - (0.8f32 * 128.0 / 255.0).powi(2)).abs() < 1e-3,
+        "{alpha}"
+    );
+    // Emission: sRGB (51, 102, 204) times [1, 1, 0.5] times 4.
+    let e = m.emission.expect("an emitter");
+    let ColorParam::Texture(g) = e.radiance else {
+        panic!("emission is read from the map")
+    };
+    let glow = scene.textures[g].eval(&plain.tex);
+    let want = Color::new(0.0331, 0.1329, 0.6038) * Color::new(4.0, 4.0, 2.0);
+    assert!((glow - want).abs().max_element() < 2e-3, "{glow}");
+    // The normal map: one texel tilted 45 degrees toward the map's +x, read as data.
+    assert!(matches!(m.detail, Some(SurfaceDetail::Normal { scale, .. }) if scale == 1.0));
+    let shaded = |h: &snell::scene::Hit| {
+        let mut h = *h;
+        let tex = h.tex;
+        scene.with_detail(&mut h, &tex);
+        h.shading_normal
+    };
+    // Without tangents, MikkTSpace's follow u: +x.
+    let n = shaded(&plain);
+    assert!(
+        (n - Vec3A::new(1.0, 0.0, 1.0).normalize()).length() < 0.01,
+        "{n}"
+    );
+    // The file's TANGENT says +y: the same texel tilts the normal toward +y.
+    let tangent = hit(&scene, [2.1, -0.2, 5.0], [0.0, 0.0, -1.0]);
+    let n = shaded(&tangent);
+    assert!(
+        (n - Vec3A::new(0.0, 1.0, 1.0).normalize()).length() < 0.01,
+        "{n}"
+    );
+}

@@ -679,7 +679,7 @@ impl Builder<'_> {
             if let Shape::Mesh(m) = &o.shape
                 && materials_of(o).iter().any(|&i| {
                     matches!(materials[i].detail, Some(SurfaceDetail::Normal { texture, .. })
-                        if matches!(textures[texture].mapping, Mapping::Uv))
+                        if textures[texture].mapping.keeps_uv_axes())
                 })
             {
                 m.ensure_tangents();
@@ -700,7 +700,7 @@ impl Builder<'_> {
                 materials_of(o).iter().any(|&m| {
                     materials[m].textures().iter().any(|&t| {
                         let t = &textures[t];
-                        !matches!(t.pattern, Pattern::Solid(_)) && matches!(t.mapping, Mapping::Uv)
+                        !matches!(t.pattern, Pattern::Solid(_)) && t.mapping.reads_shape_uv()
                     })
                 })
             })

@@ -140,7 +140,7 @@ impl Scene {
         let n = hit.shading_normal;
         let o = &self.objects[hit.object];
         let (t, up) = match &o.shape {
-            Shape::Mesh(m) if matches!(mapping, Mapping::Uv) && m.has_tangents() => {
+            Shape::Mesh(m) if mapping.keeps_uv_axes() && m.has_tangents() => {
                 let (t, b) = m.tangent_frame(hit.tex.point, hit.prim)?;
                 match &o.transform {
                     None => (t, b),

@@ -12,6 +12,15 @@ roughness 0.5) on the first three and `Checker` (a metal whose base colour is a 
 checker of red and white texels, times a base colour factor that halves green) on the other
 three.
 two-cubes.glb: the same, in one binary file.
+pbr-maps.gltf (+ pbr-maps.bin and four PNGs): two unit quads in the plane z = 0 facing +z,
+`u` along +x and glTF's `v` down along -y, under one material with every map snell reads:
+`Plain` at x = -2 (no tangents: MikkTSpace's are +x) and `Tangent` at x = +2 (a TANGENT
+attribute of +y, w = 1, which a reader must use). The material `Maps`: base colour
+halves.png (left half red, right half white) through KHR_texture_transform offset
+[0.5, 0]; metallic-roughness mr.png (green 128, blue 0: roughness 0.5 x the factor 0.8);
+normal map tilt.png (one texel tilted 45 degrees toward +x of the map); emissive
+glow.png (one texel of 51, 102, 204) times the factor [1, 1, 0.5] and
+KHR_materials_emissive_strength 4.
 The broken files (each with the same two-cubes.bin unless said):
   bad-accessor.gltf   the POSITION accessor claims more vertices than its view holds
   bad-index.gltf      an index points past the vertices (its own bad-index.bin)
@@ -113,6 +122,70 @@ def build(bad_index=False):
     return doc, data
 
 
+def pbr_maps():
+    """The quads of pbr-maps.gltf and their buffer."""
+    pos = [(-0.5, -0.5, 0), (0.5, -0.5, 0), (0.5, 0.5, 0), (-0.5, 0.5, 0)]
+    nrm = [(0, 0, 1)] * 4
+    uv = [(0, 1), (1, 1), (1, 0), (0, 0)]
+    tan = [(0, 1, 0, 1)] * 4
+    idx = [0, 1, 2, 0, 2, 3]
+    blobs = [
+        b''.join(struct.pack('<3f', *p) for p in pos),
+        b''.join(struct.pack('<3f', *n) for n in nrm),
+        b''.join(struct.pack('<2f', *t) for t in uv),
+        b''.join(struct.pack('<4f', *t) for t in tan),
+        b''.join(struct.pack('<H', i) for i in idx),
+    ]
+    views, data = [], b''
+    for k, b in enumerate(blobs):
+        views.append({'buffer': 0, 'byteOffset': len(data), 'byteLength': len(b)})
+        data += b + b'\x00' * (-len(b) % 4)
+    accessors = [
+        {'bufferView': 0, 'componentType': 5126, 'count': 4, 'type': 'VEC3',
+         'min': [-0.5, -0.5, 0], 'max': [0.5, 0.5, 0]},
+        {'bufferView': 1, 'componentType': 5126, 'count': 4, 'type': 'VEC3'},
+        {'bufferView': 2, 'componentType': 5126, 'count': 4, 'type': 'VEC2'},
+        {'bufferView': 3, 'componentType': 5126, 'count': 4, 'type': 'VEC4'},
+        {'bufferView': 4, 'componentType': 5123, 'count': 6, 'type': 'SCALAR'},
+    ]
+    plain = {'POSITION': 0, 'NORMAL': 1, 'TEXCOORD_0': 2}
+    doc = {
+        'asset': {'generator': 'Khronos glTF Blender I/O v4.2.70', 'version': '2.0'},
+        'extensionsUsed': ['KHR_texture_transform', 'KHR_materials_emissive_strength'],
+        'scene': 0,
+        'scenes': [{'name': 'Scene', 'nodes': [0, 1]}],
+        'nodes': [
+            {'name': 'Plain', 'mesh': 0, 'translation': [-2, 0, 0]},
+            {'name': 'Tangent', 'mesh': 1, 'translation': [2, 0, 0]},
+        ],
+        'meshes': [
+            {'name': 'Plain', 'primitives': [{'attributes': plain, 'indices': 4, 'material': 0}]},
+            {'name': 'Tangent', 'primitives': [
+                {'attributes': dict(plain, TANGENT=3), 'indices': 4, 'material': 0}]},
+        ],
+        'materials': [{
+            'name': 'Maps',
+            'pbrMetallicRoughness': {
+                'baseColorTexture': {'index': 0, 'extensions': {
+                    'KHR_texture_transform': {'offset': [0.5, 0]}}},
+                'metallicRoughnessTexture': {'index': 1},
+                'metallicFactor': 1, 'roughnessFactor': 0.8},
+            'normalTexture': {'index': 2, 'scale': 1},
+            'emissiveTexture': {'index': 3},
+            'emissiveFactor': [1, 1, 0.5],
+            'extensions': {'KHR_materials_emissive_strength': {'emissiveStrength': 4}},
+        }],
+        'textures': [{'sampler': 0, 'source': i} for i in range(4)],
+        'samplers': [{'magFilter': 9728, 'minFilter': 9728}],
+        'images': [{'uri': n, 'mimeType': 'image/png'}
+                   for n in ('halves.png', 'mr.png', 'tilt.png', 'glow.png')],
+        'accessors': accessors,
+        'bufferViews': views,
+        'buffers': [{'byteLength': len(data), 'uri': 'pbr-maps.bin'}],
+    }
+    return doc, data
+
+
 def write(name, doc):
     with open(os.path.join(HERE, name), 'w') as f:
         json.dump(doc, f, indent=1)
@@ -141,6 +214,19 @@ def main():
     body = struct.pack('<I4s', len(js), b'JSON') + js + struct.pack('<I4s', len(blob), b'BIN\x00') + blob
     with open(os.path.join(HERE, 'two-cubes.glb'), 'wb') as f:
         f.write(struct.pack('<4sII', b'glTF', 2, 12 + len(body)) + body)
+
+    maps, maps_data = pbr_maps()
+    with open(os.path.join(HERE, 'pbr-maps.bin'), 'wb') as f:
+        f.write(maps_data)
+    write('pbr-maps.gltf', maps)
+    for name, w, h, px in [
+        ('halves.png', 2, 1, [(255, 0, 0), (255, 255, 255)]),
+        ('mr.png', 1, 1, [(0, 128, 0)]),
+        ('tilt.png', 1, 1, [(218, 128, 218)]),
+        ('glow.png', 1, 1, [(51, 102, 204)]),
+    ]:
+        with open(os.path.join(HERE, name), 'wb') as f:
+            f.write(png(w, h, px))
 
     bad = json.loads(json.dumps(doc))
     bad['accessors'][0]['count'] = 2400

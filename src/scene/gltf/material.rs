@@ -1,0 +1,252 @@
+//! glTF's metallic-roughness materials as snell's, as docs/scene-format.md sets out:
+//! KHR_materials_transmission of 0.5 or more makes glass (of KHR_materials_ior, 1.5 by
+//! default); metallic 0.5 or more (the factor times the metallic map's mean) a metal of the
+//! base colour; anything else the base colour under a clear coat (snell's `plastic`, as
+//! glTF's dielectric is a diffuse base under a GGX specular layer of IOR 1.5). Roughness is
+//! perceptual (GGX alpha is its square), from the factor times the map's green channel
+//! point by point. The normal map bends the shading normal; the emissive factor (times
+//! KHR_materials_emissive_strength, times the emissive map) makes an emitter. Each map is
+//! read through its own uv transform (KHR_texture_transform).
+
+use crate::bsdf::ConductorFresnel;
+use crate::material::conductor::Conductor;
+use crate::material::detail::SurfaceDetail;
+use crate::material::dielectric::Dielectric;
+use crate::material::plastic::Plastic;
+use crate::material::{ColorParam, Emission, Material, Scalar};
+use crate::math::{Color, Vec2};
+use crate::mesh_file::gltf::{PbrMaterial, TextureRef};
+use crate::texture::{ColorSpace, ImageData, Mapping, Pattern, Texture};
+use std::collections::HashMap;
+use std::sync::Arc;
+
+/// The snell material type a glTF material becomes.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(in crate::scene) enum PbrType {
+    /// See-through: glass.
+    Glass,
+    /// Metallic: a metal of the base colour.
+    Metal,
+    /// Otherwise: the base colour under a clear coat.
+    Plastic,
+}
+
+/// Which type `m` becomes, its metallic factor times `metallic_mean` (the metallic map's
+/// mean, 1 without one).
+pub(in crate::scene) fn pbr_type(m: &PbrMaterial, metallic_mean: f32) -> PbrType {
+    if m.transmission >= 0.5 {
+        PbrType::Glass
+    } else if m.metallic * metallic_mean >= 0.5 {
+        PbrType::Metal
+    } else {
+        PbrType::Plastic
+    }
+}
+
+/// A glTF file's decoded images, made into snell's images as each use reads them: colour
+/// (sRGB) or data (linear), each made once.
+pub(in crate::scene) struct Images {
+    raw: Vec<Option<::image::DynamicImage>>,
+    made: HashMap<(usize, bool), Arc<ImageData>>,
+}
+
+impl Images {
+    /// The file's images, by glTF index (`None` for those no used material reads).
+    pub fn new(raw: Vec<Option<::image::DynamicImage>>) -> Self {
+        Images {
+            raw,
+            made: HashMap::new(),
+        }
+    }
+
+    /// Image `i` read as colour or as data.
+    fn get(&mut self, i: usize, space: ColorSpace) -> Option<Arc<ImageData>> {
+        let linear = space == ColorSpace::Linear;
+        if let Some(img) = self.made.get(&(i, linear)) {
+            return Some(img.clone());
+        }
+        let raw = self.raw.get(i)?.as_ref()?;
+        let img = Arc::new(ImageData::from_owned(raw.clone(), space).with_mipmaps());
+        self.made.insert((i, linear), img.clone());
+        Some(img)
+    }
+}
+
+/// A glTF material as a snell material, its textures added to `textures`; `warn` hears
+/// what it cannot read.
+pub(in crate::scene) fn pbr_material(
+    m: &PbrMaterial,
+    images: &mut Images,
+    textures: &mut Vec<Texture>,
+    warn: &mut dyn FnMut(String),
+) -> Material {
+    for t in m.textures().filter(|t| t.texcoord != 0) {
+        warn(format!(
+            "material `{}` reads TEXCOORD_{}, which snell does not read: it uses TEXCOORD_0",
+            m.name, t.texcoord
+        ));
+    }
+    if m.alpha != crate::mesh_file::gltf::Alpha::Opaque {
+        warn(format!(
+            "material `{}` has alphaMode {:?}, which snell does not read: it is drawn opaque",
+            m.name, m.alpha
+        ));
+    }
+    let mut add = |pattern: Pattern, t: Option<&TextureRef>| {
+        textures.push(Texture {
+            pattern,
+            mapping: mapping(t),
+        });
+        textures.len() - 1
+    };
+    let base = Color::from_slice(&m.base_color[..3]).map(unit);
+    let base_image = m.base_color_texture.as_ref().and_then(|t| {
+        let img = images.get(t.image, ColorSpace::Srgb)?;
+        Some((scaled(img, base, Color::ONE), t))
+    });
+    let texture = match base_image {
+        Some((img, t)) => add(Pattern::Image(img), Some(t)),
+        None => add(Pattern::Solid(base), None),
+    };
+    // Roughness point by point from the map's green channel; the metallic map's mean picks
+    // the type.
+    let roughness = unit(m.roughness);
+    let mr = m
+        .metallic_roughness_texture
+        .as_ref()
+        .and_then(|t| Some((images.get(t.image, ColorSpace::Linear)?, t)));
+    let (alpha, metallic_mean) = match &mr {
+        Some((img, _)) => {
+            let mean = img.mean();
+            ((roughness * mean.y).powi(2), mean.z)
+        }
+        None => (roughness * roughness, 1.0),
+    };
+    let alpha_param = match mr {
+        Some((img, t)) => {
+            Scalar::Texture(add(Pattern::Image(squared_green(&img, roughness)), Some(t)))
+        }
+        None => Scalar::Value(alpha),
+    };
+    let ior = if m.ior.is_finite() && m.ior >= 1.0 {
+        m.ior
+    } else {
+        1.5
+    };
+    let emissive = Color::from(m.emissive).map(|e| {
+        if e.is_finite() {
+            e.clamp(0.0, 1e6)
+        } else {
+            0.0
+        }
+    });
+    let radiance = match &m.emissive_texture {
+        _ if emissive.max_element() <= 0.0 => None,
+        Some(t) => match images.get(t.image, ColorSpace::Srgb) {
+            Some(img) => Some(ColorParam::Texture(add(
+                Pattern::Image(scaled(img, emissive, Color::splat(1e6))),
+                Some(t),
+            ))),
+            None => Some(ColorParam::Value(emissive)),
+        },
+        None => Some(ColorParam::Value(emissive)),
+    };
+    let emission = radiance.map(|radiance| Emission {
+        radiance,
+        two_sided: m.double_sided,
+    });
+    let detail = m.normal_texture.as_ref().and_then(|t| {
+        let img = images.get(t.image, ColorSpace::Linear)?;
+        Some(SurfaceDetail::Normal {
+            texture: add(Pattern::Image(img), Some(t)),
+            scale: if m.normal_scale.is_finite() {
+                m.normal_scale
+            } else {
+                1.0
+            },
+        })
+    });
+    let mut out = match pbr_type(m, metallic_mean) {
+        PbrType::Glass => Dielectric {
+            roughness: alpha_param,
+        }
+        .material(texture, ior, Color::ZERO, alpha, emission),
+        PbrType::Metal => Conductor {
+            fresnel: ConductorFresnel::One,
+            index: None,
+            roughness: alpha_param,
+        }
+        .material(texture, base, alpha, emission),
+        PbrType::Plastic => Plastic::new(alpha_param, ior).material(texture, ior, alpha, emission),
+    };
+    out.detail = detail;
+    out
+}
+
+/// `x` kept to 0..1 (0 where it is not a number).
+fn unit(x: f32) -> f32 {
+    if x.is_finite() {
+        x.clamp(0.0, 1.0)
+    } else {
+        0.0
+    }
+}
+
+/// The mapping a texture reference reads through: the shape's uv, transformed where it
+/// says so.
+fn mapping(t: Option<&TextureRef>) -> Mapping {
+    match t.and_then(|t| t.transform) {
+        Some(m) if m.iter().flatten().all(|x| x.is_finite()) => Mapping::UvTransform {
+            m: m.map(Vec2::from),
+        },
+        _ => Mapping::Uv,
+    }
+}
+
+/// An image times a factor (glTF multiplies a map by its factor): the image itself where
+/// the factor is white, else a copy in linear floats with the factor (kept to `0..=max`)
+/// applied.
+fn scaled(img: Arc<ImageData>, factor: Color, max: Color) -> Arc<ImageData> {
+    if factor == Color::ONE || !factor.is_finite() {
+        return img;
+    }
+    let f = factor.clamp(Color::ZERO, max);
+    from_texels(&img, |c| c * f)
+}
+
+/// GGX alpha from a metallic-roughness map: `(factor x green)^2` in every channel.
+fn squared_green(img: &ImageData, factor: f32) -> Arc<ImageData> {
+    from_texels(img, |c| Color::splat((factor * c.y).powi(2)))
+}
+
+/// A linear float image of `f` of each of `img`'s texels.
+fn from_texels(img: &ImageData, f: impl Fn(Color) -> Color) -> Arc<ImageData> {
+    let (w, h) = (img.width(), img.height());
+    let out =
+        ::image::Rgb32FImage::from_fn(w, h, |x, y| ::image::Rgb(f(img.texel(x, y)).to_array()));
+    Arc::new(
+        ImageData::from_owned(::image::DynamicImage::ImageRgb32F(out), ColorSpace::Linear)
+            .with_mipmaps(),
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_type_follows_transmission_then_metallic() {
+        let m = |metallic: f32, transmission: f32| PbrMaterial {
+            metallic,
+            transmission,
+            ..PbrMaterial::default()
+        };
+        assert_eq!(pbr_type(&m(0.0, 0.0), 1.0), PbrType::Plastic);
+        assert_eq!(pbr_type(&m(0.4, 0.0), 1.0), PbrType::Plastic);
+        assert_eq!(pbr_type(&m(0.5, 0.0), 1.0), PbrType::Metal);
+        assert_eq!(pbr_type(&m(1.0, 1.0), 1.0), PbrType::Glass);
+        assert_eq!(pbr_type(&PbrMaterial::default(), 1.0), PbrType::Metal);
+        // A metallic map mostly dielectric.
+        assert_eq!(pbr_type(&PbrMaterial::default(), 0.2), PbrType::Plastic);
+    }
+}
