@@ -4,6 +4,7 @@
 //! [`Bsdf`] at each hit from the material's [`Surface`] and its textures. One file per type.
 
 pub mod conductor;
+pub mod cutout;
 pub mod detail;
 pub mod dielectric;
 pub mod diffuse;
@@ -42,6 +43,8 @@ pub struct Material {
     pub textured: Option<Box<TexturedTerms>>,
     /// A normal or bump map bending the shading normal, if any.
     pub detail: Option<detail::SurfaceDetail>,
+    /// Holes cut by alpha, if any.
+    pub cutout: Option<cutout::Cutout>,
 }
 
 /// The Phong terms at a surface point: the material's constants, or its textures read
@@ -207,6 +210,7 @@ impl Material {
             color(&e.radiance);
         }
         out.extend(self.detail.map(|d| d.texture()));
+        out.extend(self.cutout.map(|c| c.texture()));
         if let Some(t) = &self.textured {
             out.extend(
                 [
@@ -254,6 +258,7 @@ impl Material {
             emission,
             textured: None,
             detail: None,
+            cutout: None,
         }
     }
 }

@@ -2,6 +2,7 @@
 //! and shared by every render thread.
 
 mod build;
+mod cutout;
 mod detail;
 mod diag;
 mod footprint;
@@ -342,6 +343,10 @@ pub struct Scene {
     needs_uv: Vec<bool>,
     /// Per material: whether it reads a texture that varies over the surface.
     textured: Vec<bool>,
+    /// Per object: whether a material of it has holes cut by alpha (see `cutout.rs`).
+    cutouts: Vec<bool>,
+    /// Whether any object has.
+    any_cutout: bool,
     /// The files the scene read besides itself (textures, meshes, MTL files and their
     /// maps), sorted: what a preview watches for changes.
     pub files: Vec<PathBuf>,
@@ -379,6 +384,9 @@ impl Scene {
     /// [`Scene::closest_hit`] on every object but `skip` (see [`Scene::leaving`]).
     #[inline]
     pub fn closest_hit_skipping(&self, ray: &Ray, t_max: f32, skip: Skip) -> Option<Hit> {
+        if self.any_cutout {
+            return self.closest_hit_past_holes(ray, t_max, skip, false);
+        }
         let (i, h) = self.accel.closest_hit(&self.objects, ray, t_max, skip)?;
         Some(self.hit_details(ray, i, h, false))
     }
@@ -407,7 +415,12 @@ impl Scene {
             let found = &mut found[..rays.len()];
             self.accel.closest_hits(&self.objects, rays, found);
             for ((ray, f), o) in rays.iter().zip(found.iter()).zip(out) {
-                *o = f.map(|(i, h)| self.hit_details(ray, i, h, false));
+                *o = match f {
+                    Some((i, _)) if self.cutouts[*i] => {
+                        self.closest_hit_past_holes(ray, f32::INFINITY, Skip::NONE, false)
+                    }
+                    f => f.map(|(i, h)| self.hit_details(ray, i, h, false)),
+                };
             }
         }
     }
@@ -415,6 +428,9 @@ impl Scene {
     /// As [`Scene::closest_hit_skipping`], with the shape's uv worked out even where no
     /// texture reads it (for debug views).
     pub fn closest_hit_with_uv(&self, ray: &Ray, t_max: f32, skip: Skip) -> Option<Hit> {
+        if self.any_cutout {
+            return self.closest_hit_past_holes(ray, t_max, skip, true);
+        }
         let (i, h) = self.accel.closest_hit(&self.objects, ray, t_max, skip)?;
         Some(self.hit_details(ray, i, h, true))
     }
@@ -427,16 +443,28 @@ impl Scene {
             .closest_hit(&self.objects, ray, t_max, Skip::NONE)
     }
 
-    /// Closest hit in `(0, t_max)` among the transparent objects only.
+    /// Closest hit in `(0, t_max)` among the transparent objects only (cut-outs count as
+    /// transparent, and their holes are gone through).
     #[inline]
     pub fn closest_transparent_hit(&self, ray: &Ray, t_max: f32) -> Option<Hit> {
-        let mut best: Option<(usize, ShapeHit)> = None;
-        for &i in &self.transparent_objects {
-            if let Some(h) = self.objects[i].intersect(ray, best.map_or(t_max, |b| b.1.t)) {
-                best = Some((i, h));
+        let (mut r, mut left, mut travelled) = (*ray, t_max, 0.0);
+        for _ in 0..cutout::MAX_HOLES {
+            let mut best: Option<(usize, ShapeHit)> = None;
+            for &i in &self.transparent_objects {
+                if let Some(h) = self.objects[i].intersect(&r, best.map_or(left, |b| b.1.t)) {
+                    best = Some((i, h));
+                }
             }
+            let (i, h) = best?;
+            let mut hit = self.hit_details(&r, i, h, self.cutouts[i]);
+            if !(self.cutouts[i] && self.is_hole(&hit, &r)) {
+                hit.t += travelled;
+                return Some(hit);
+            }
+            travelled += hit.t;
+            (r, left) = Self::through(&hit, &r, left);
         }
-        best.map(|(i, h)| self.hit_details(ray, i, h, false))
+        None
     }
 
     /// The radiance that area light `light` sends back along the ray from `origin` (unit
@@ -518,6 +546,9 @@ impl Scene {
     /// tracer's shadow rays).
     #[inline]
     pub fn occluded(&self, ray: &Ray, t_max: f32, skip: Skip) -> bool {
+        if self.any_cutout {
+            return self.occluded_past_holes(ray, t_max, skip);
+        }
         self.accel
             .any_hit(&self.objects, ray, t_max, skip, |_| true)
     }

@@ -209,3 +209,33 @@ fn every_map_of_a_material_is_read() {
         "{n}"
     );
 }
+
+/// Alpha modes (tests/data/gltf/cutout.gltf): `MASK` cuts holes where the base colour's
+/// alpha is under the cutoff, for camera and shadow rays alike; `BLEND` lets through the
+/// fraction of rays that alpha leaves.
+#[test]
+fn alpha_cuts_holes() {
+    let scene = scene_with("cutout.gltf", "");
+    let name = |h: &snell::scene::Hit| scene.objects[h.object].name.clone();
+    // The leaf's left half (alpha 0) is a hole: the ray goes on to the wall behind it.
+    let through = hit(&scene, [-0.25, 0.0, 5.0], [0.0, 0.0, -1.0]);
+    assert!(name(&through).ends_with("Wall"), "{}", name(&through));
+    assert!((through.t - 6.0).abs() < 1e-3, "{}", through.t);
+    let leaf = hit(&scene, [0.25, 0.0, 5.0], [0.0, 0.0, -1.0]);
+    assert!(name(&leaf).ends_with("Leaf"), "{}", name(&leaf));
+    // Shadow rays from the wall toward +z: through the hole, blocked by the leaf.
+    let up = |x: f32| Ray::new(Vec3A::new(x, 0.0, -0.999), Vec3A::Z);
+    assert!(!scene.occluded(&up(-0.25), 10.0, Skip::NONE));
+    assert!(scene.occluded(&up(0.25), 10.0, Skip::NONE));
+    // The veil (alpha 0.25) stops about a quarter of the rays that meet it.
+    let n = 4000;
+    let stopped = (0..n)
+        .filter(|k| {
+            let x = 2.55 + 0.9 * (*k as f32 + 0.5) / n as f32;
+            let y = 0.4 * ((*k as f32 * 0.618_034).fract() - 0.5);
+            name(&hit(&scene, [x, y, 5.0], [0.0, 0.0, -1.0])).ends_with("Veil")
+        })
+        .count() as f32
+        / n as f32;
+    assert!((stopped - 0.25).abs() < 0.03, "{stopped}");
+}

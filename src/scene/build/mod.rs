@@ -685,10 +685,20 @@ impl Builder<'_> {
                 m.ensure_tangents();
             }
         }
-        let transparent: Vec<bool> = objects
+        let cutouts: Vec<bool> = objects
             .iter()
             .map(|o| {
                 materials_of(o)
+                    .iter()
+                    .any(|&m| materials[m].cutout.is_some())
+            })
+            .collect();
+        // Shadow rays look through cut-outs as through glass (their holes, that is).
+        let transparent: Vec<bool> = objects
+            .iter()
+            .zip(&cutouts)
+            .map(|(o, &cut)| {
+                cut || materials_of(o)
                     .iter()
                     .any(|&m| materials[m].is_transparent())
             })
@@ -735,6 +745,8 @@ impl Builder<'_> {
             transparent_objects,
             needs_uv,
             textured,
+            any_cutout: cutouts.contains(&true),
+            cutouts,
             stats: std::mem::take(&mut self.stats),
             limits: self.limits,
             files: vec![],

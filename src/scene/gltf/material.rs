@@ -6,16 +6,19 @@
 //! perceptual (GGX alpha is its square), from the factor times the map's green channel
 //! point by point. The normal map bends the shading normal; the emissive factor (times
 //! KHR_materials_emissive_strength, times the emissive map) makes an emitter. Each map is
-//! read through its own uv transform (KHR_texture_transform).
+//! read through its own uv transform (KHR_texture_transform). `alphaMode` `MASK` and
+//! `BLEND` cut holes where the base colour's alpha (factor times image) says (see
+//! [`Cutout`]).
 
 use crate::bsdf::ConductorFresnel;
 use crate::material::conductor::Conductor;
+use crate::material::cutout::Cutout;
 use crate::material::detail::SurfaceDetail;
 use crate::material::dielectric::Dielectric;
 use crate::material::plastic::Plastic;
 use crate::material::{ColorParam, Emission, Material, Scalar};
 use crate::math::{Color, Vec2};
-use crate::mesh_file::gltf::{PbrMaterial, TextureRef};
+use crate::mesh_file::gltf::{Alpha, PbrMaterial, TextureRef};
 use crate::texture::{ColorSpace, ImageData, Mapping, Pattern, Texture};
 use std::collections::HashMap;
 use std::sync::Arc;
@@ -59,6 +62,23 @@ impl Images {
         }
     }
 
+    /// The alpha channel of image `i` times `factor`, as data in every channel; `None` for
+    /// an image without alpha.
+    fn alpha(&mut self, i: usize, factor: f32) -> Option<Arc<ImageData>> {
+        let raw = self.raw.get(i)?.as_ref()?;
+        if !raw.color().has_alpha() {
+            return None;
+        }
+        let rgba = raw.to_rgba32f();
+        let out = ::image::Rgb32FImage::from_fn(rgba.width(), rgba.height(), |x, y| {
+            ::image::Rgb([rgba.get_pixel(x, y)[3] * factor; 3])
+        });
+        Some(Arc::new(
+            ImageData::from_owned(::image::DynamicImage::ImageRgb32F(out), ColorSpace::Linear)
+                .with_mipmaps(),
+        ))
+    }
+
     /// Image `i` read as colour or as data.
     fn get(&mut self, i: usize, space: ColorSpace) -> Option<Arc<ImageData>> {
         let linear = space == ColorSpace::Linear;
@@ -84,12 +104,6 @@ pub(in crate::scene) fn pbr_material(
         warn(format!(
             "material `{}` reads TEXCOORD_{}, which snell does not read: it uses TEXCOORD_0",
             m.name, t.texcoord
-        ));
-    }
-    if m.alpha != crate::mesh_file::gltf::Alpha::Opaque {
-        warn(format!(
-            "material `{}` has alphaMode {:?}, which snell does not read: it is drawn opaque",
-            m.name, m.alpha
         ));
     }
     let mut add = |pattern: Pattern, t: Option<&TextureRef>| {
@@ -166,6 +180,30 @@ pub(in crate::scene) fn pbr_material(
             },
         })
     });
+    // Alpha: the factor times the base-colour image's alpha channel, through its mapping.
+    let cutout = match m.alpha {
+        Alpha::Opaque => None,
+        mode => {
+            let factor = unit(m.base_color[3]);
+            let image = m
+                .base_color_texture
+                .as_ref()
+                .and_then(|t| Some((images.alpha(t.image, factor)?, t)));
+            let texture = match image {
+                Some((img, t)) => Some(add(Pattern::Image(img), Some(t))),
+                None if factor < 1.0 => Some(add(Pattern::Solid(Color::splat(factor)), None)),
+                // Alpha 1 everywhere: nothing to cut.
+                None => None,
+            };
+            texture.map(|texture| match mode {
+                Alpha::Mask(cutoff) => Cutout::Mask {
+                    texture,
+                    cutoff: if cutoff.is_finite() { cutoff } else { 0.5 },
+                },
+                _ => Cutout::Blend { texture },
+            })
+        }
+    };
     let mut out = match pbr_type(m, metallic_mean) {
         PbrType::Glass => Dielectric {
             roughness: alpha_param,
@@ -180,6 +218,7 @@ pub(in crate::scene) fn pbr_material(
         PbrType::Plastic => Plastic::new(alpha_param, ior).material(texture, ior, alpha, emission),
     };
     out.detail = detail;
+    out.cutout = cutout;
     out
 }
 

@@ -21,6 +21,10 @@ halves.png (left half red, right half white) through KHR_texture_transform offse
 normal map tilt.png (one texel tilted 45 degrees toward +x of the map); emissive
 glow.png (one texel of 51, 102, 204) times the factor [1, 1, 0.5] and
 KHR_materials_emissive_strength 4.
+cutout.gltf (+ cutout.bin, leaf.png): alpha modes. The unit quad of pbr-maps.gltf placed
+three times: `Leaf` at the origin (alphaMode MASK, cutoff 0.5, base colour leaf.png:
+left half alpha 0, right half alpha 255), `Veil` at x = 3 (BLEND, alpha factor 0.25, no
+image) and `Wall` 1 behind both, scaled by 8 (opaque).
 The broken files (each with the same two-cubes.bin unless said):
   bad-accessor.gltf   the POSITION accessor claims more vertices than its view holds
   bad-index.gltf      an index points past the vertices (its own bad-index.bin)
@@ -58,6 +62,13 @@ def cube():
             uv.append(((su + 1) / 2, (1 - sv) / 2))
         idx += [base, base + 1, base + 2, base, base + 2, base + 3]
     return pos, nrm, uv, idx
+
+
+def png_rgba(w, h, rgba):
+    raw = b''.join(b'\x00' + bytes(c for px in rgba[y * w:(y + 1) * w] for c in px) for y in range(h))
+    chunk = lambda t, d: struct.pack('>I', len(d)) + t + d + struct.pack('>I', zlib.crc32(t + d))
+    return (b'\x89PNG\r\n\x1a\n' + chunk(b'IHDR', struct.pack('>IIBBBBB', w, h, 8, 6, 0, 0, 0))
+            + chunk(b'IDAT', zlib.compress(raw)) + chunk(b'IEND', b''))
 
 
 def png(w, h, rgb):
@@ -186,6 +197,34 @@ def pbr_maps():
     return doc, data
 
 
+def cutout():
+    """cutout.gltf: the pbr-maps quad under three materials."""
+    doc, data = pbr_maps()
+    plain = {'POSITION': 0, 'NORMAL': 1, 'TEXCOORD_0': 2}
+    doc['extensionsUsed'] = []
+    doc['scenes'] = [{'name': 'Scene', 'nodes': [0, 1, 2]}]
+    doc['nodes'] = [
+        {'name': 'Leaf', 'mesh': 0},
+        {'name': 'Veil', 'mesh': 1, 'translation': [3, 0, 0]},
+        {'name': 'Wall', 'mesh': 2, 'translation': [0, 0, -1], 'scale': [8, 8, 8]},
+    ]
+    doc['meshes'] = [
+        {'name': name, 'primitives': [{'attributes': plain, 'indices': 4, 'material': k}]}
+        for k, name in enumerate(['Leaf', 'Veil', 'Wall'])
+    ]
+    doc['materials'] = [
+        {'name': 'Leaf', 'alphaMode': 'MASK', 'alphaCutoff': 0.5, 'doubleSided': True,
+         'pbrMetallicRoughness': {'baseColorTexture': {'index': 0}, 'metallicFactor': 0}},
+        {'name': 'Veil', 'alphaMode': 'BLEND',
+         'pbrMetallicRoughness': {'baseColorFactor': [1, 1, 1, 0.25], 'metallicFactor': 0}},
+        {'name': 'Wall', 'pbrMetallicRoughness': {'metallicFactor': 0}},
+    ]
+    doc['textures'] = [{'sampler': 0, 'source': 0}]
+    doc['images'] = [{'uri': 'leaf.png', 'mimeType': 'image/png'}]
+    doc['buffers'][0]['uri'] = 'cutout.bin'
+    return doc, data
+
+
 def write(name, doc):
     with open(os.path.join(HERE, name), 'w') as f:
         json.dump(doc, f, indent=1)
@@ -219,6 +258,12 @@ def main():
     with open(os.path.join(HERE, 'pbr-maps.bin'), 'wb') as f:
         f.write(maps_data)
     write('pbr-maps.gltf', maps)
+    cut, cut_data = cutout()
+    with open(os.path.join(HERE, 'cutout.bin'), 'wb') as f:
+        f.write(cut_data)
+    write('cutout.gltf', cut)
+    with open(os.path.join(HERE, 'leaf.png'), 'wb') as f:
+        f.write(png_rgba(2, 1, [(40, 160, 40, 0), (40, 160, 40, 255)]))
     for name, w, h, px in [
         ('halves.png', 2, 1, [(255, 0, 0), (255, 255, 255)]),
         ('mr.png', 1, 1, [(0, 128, 0)]),
