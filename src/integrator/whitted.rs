@@ -259,9 +259,16 @@ impl Whitted {
             ..hit.tex
         };
         let tex = &tex;
-        let mut detailed = *hit;
-        scene.with_detail(&mut detailed, tex);
-        let hit = &detailed;
+        // A copy of the hit only where a normal or bump map bends its normal.
+        let detailed;
+        let hit = if m.detail.is_some() {
+            let mut h = *hit;
+            scene.with_detail(&mut h, tex);
+            detailed = h;
+            &detailed
+        } else {
+            hit
+        };
         // Entering or leaving is told by the normal: the outward normal faces the ray when
         // the ray comes from outside.
         let entering = d.dot(hit.normal) < 0.0;

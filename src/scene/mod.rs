@@ -416,7 +416,7 @@ impl Scene {
             self.accel.closest_hits(&self.objects, rays, found);
             for ((ray, f), o) in rays.iter().zip(found.iter()).zip(out) {
                 *o = match f {
-                    Some((i, _)) if self.cutouts[*i] => {
+                    Some((i, _)) if self.any_cutout && self.cutouts[*i] => {
                         self.closest_hit_past_holes(ray, f32::INFINITY, Skip::NONE, false)
                     }
                     f => f.map(|(i, h)| self.hit_details(ray, i, h, false)),
