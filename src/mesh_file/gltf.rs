@@ -30,6 +30,55 @@ pub struct GltfScene {
     pub warnings: Vec<String>,
     /// The files read besides the glTF file itself (external buffers and images).
     pub files: Vec<PathBuf>,
+    /// The cameras the nodes place, in the nodes' order.
+    pub cameras: Vec<GltfCamera>,
+    /// The KHR_lights_punctual lights the nodes place.
+    pub lights: Vec<GltfLight>,
+}
+
+/// A camera placed by a node: it looks down its local -z with +y up (glTF's convention).
+#[derive(Clone, Debug, PartialEq)]
+pub struct GltfCamera {
+    /// The camera's name, or its node's, or `camera N`.
+    pub name: String,
+    /// Vertical field of view in radians (perspective), or `None` for orthographic.
+    pub yfov: Option<f32>,
+    /// Orthographic: half the view's height.
+    pub ymag: f32,
+    /// Its node's world matrix (column-major).
+    pub matrix: [[f32; 4]; 4],
+}
+
+/// A KHR_lights_punctual light placed by a node (spot and directional lights shine down
+/// the node's local -z).
+#[derive(Clone, Debug, PartialEq)]
+pub struct GltfLight {
+    /// The light's name, or `light N`.
+    pub name: String,
+    /// What kind.
+    pub kind: GltfLightKind,
+    /// Linear RGB.
+    pub color: [f32; 3],
+    /// Candela (point, spot) or lux (directional).
+    pub intensity: f32,
+    /// Its node's world matrix (column-major).
+    pub matrix: [[f32; 4]; 4],
+}
+
+/// The kinds of KHR_lights_punctual light.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum GltfLightKind {
+    /// From a point, every way.
+    Point,
+    /// From a point, in a cone: inner and outer half-angles in radians.
+    Spot {
+        /// Where the light starts to fall off.
+        inner: f32,
+        /// Where it reaches zero.
+        outer: f32,
+    },
+    /// Parallel, from far away.
+    Directional,
 }
 
 /// One glTF mesh as one snell mesh.
@@ -175,9 +224,20 @@ pub fn load(path: &Path) -> Result<GltfScene, MeshError> {
     parse(&bytes, path)
 }
 
+/// Reads only the cameras and lights of a `.gltf` or `.glb` file (no meshes, no images).
+pub fn load_placements(path: &Path) -> Result<GltfScene, MeshError> {
+    let bytes = std::fs::read(path).map_err(|e| error(path, format!("cannot read it: {e}")))?;
+    parse_with(&bytes, path, false)
+}
+
 /// A glTF file's `bytes` (JSON or GLB) as [`load`] reads them, as if read from `path` (whose
 /// folder its buffer and image files are found in).
 pub fn parse(bytes: &[u8], path: &Path) -> Result<GltfScene, MeshError> {
+    parse_with(bytes, path, true)
+}
+
+/// [`parse`], with its meshes, materials and images only where `geometry` asks.
+fn parse_with(bytes: &[u8], path: &Path, geometry: bool) -> Result<GltfScene, MeshError> {
     // The `gltf` crate subtracts the 12-byte header from a GLB's stated length before it
     // checks it (an overflow, and a panic where overflow is checked: found by the fuzz
     // target).
@@ -246,7 +306,7 @@ pub fn parse(bytes: &[u8], path: &Path) -> Result<GltfScene, MeshError> {
             ));
         }
         let world = mul(&parent, &node.transform().matrix());
-        if let Some(mesh) = node.mesh() {
+        if let Some(mesh) = node.mesh().filter(|_| geometry) {
             let k = match mesh_of.get(&mesh.index()) {
                 Some(&k) => k,
                 None => {
@@ -268,10 +328,53 @@ pub fn parse(bytes: &[u8], path: &Path) -> Result<GltfScene, MeshError> {
                 matrix: world,
             });
         }
+        if let Some(c) = node.camera() {
+            use gltf::camera::Projection as P;
+            let (yfov, ymag) = match c.projection() {
+                P::Perspective(p) => (Some(p.yfov()), 0.0),
+                P::Orthographic(o) => (None, o.ymag()),
+            };
+            out.cameras.push(GltfCamera {
+                name: c
+                    .name()
+                    .or(node.name())
+                    .map_or_else(|| format!("camera {}", c.index()), str::to_string),
+                yfov,
+                ymag,
+                matrix: world,
+            });
+        }
+        if let Some(l) = node.light() {
+            use gltf::khr_lights_punctual::Kind as K;
+            out.lights.push(GltfLight {
+                name: l
+                    .name()
+                    .map_or_else(|| format!("light {}", l.index()), str::to_string),
+                kind: match l.kind() {
+                    K::Point => GltfLightKind::Point,
+                    K::Directional => GltfLightKind::Directional,
+                    K::Spot {
+                        inner_cone_angle,
+                        outer_cone_angle,
+                    } => GltfLightKind::Spot {
+                        inner: inner_cone_angle,
+                        outer: outer_cone_angle,
+                    },
+                },
+                color: l.color(),
+                intensity: l.intensity(),
+                matrix: world,
+            });
+        }
         stack.extend(node.children().map(|c| (c, world, depth + 1)));
     }
     out.instances.reverse();
+    out.cameras.reverse();
+    out.lights.reverse();
 
+    if !geometry {
+        return Ok(out);
+    }
     out.materials = document.materials().map(|m| material(&m)).collect();
     // The images the used materials show, decoded.
     let mut wanted = vec![false; document.images().len()];

@@ -239,3 +239,107 @@ fn alpha_cuts_holes() {
         / n as f32;
     assert!((stopped - 0.25).abs() < 0.03, "{stopped}");
 }
+
+/// A scene with `[camera]` and objects of its own text, read in tests/data/gltf.
+fn scene_text(text: &str) -> Result<Scene, String> {
+    let dir = repo("tests/data/gltf");
+    load_str(text, &dir.join("t.toml"), &dir, Format::Toml).map_err(|e| format!("{e:?}"))
+}
+
+/// The file's cameras (tests/data/gltf/lit.gltf): `[camera] gltf` takes the first, or the
+/// one `gltf_camera` names, placed by its node (glTF cameras look down their local -z).
+#[test]
+fn a_files_camera_places_the_view() {
+    let object = "[[objects]]\ntype = \"mesh\"\nfile = \"lit.gltf\"\n";
+    let scene = scene_text(&format!("[camera]\ngltf = \"lit.gltf\"\n{object}")).unwrap();
+    let v = scene.camera.view();
+    assert!((v.position - Vec3A::new(0.0, 0.0, 5.0)).length() < 1e-5);
+    assert!(((v.look_at - v.position).normalize() - Vec3A::NEG_Z).length() < 1e-5);
+    assert!((v.fov - 0.5f32.to_degrees()).abs() < 1e-3, "{}", v.fov);
+    // The side camera: turned to look down -x, orthographic, twice ymag tall.
+    let scene = scene_text(&format!(
+        "[camera]\ngltf = \"lit.gltf\"\ngltf_camera = \"Side\"\n{object}"
+    ))
+    .unwrap();
+    let v = scene.camera.view();
+    assert!((v.position - Vec3A::new(5.0, 0.0, 0.0)).length() < 1e-5);
+    assert!(((v.look_at - v.position).normalize() - Vec3A::NEG_X).length() < 1e-5);
+    assert!(matches!(
+        v.projection,
+        snell::camera::Projection::Orthographic { height } if (height - 4.0).abs() < 1e-5
+    ));
+    // A name it does not have, and keys the file's camera gives, are errors.
+    let e = scene_text(&format!(
+        "[camera]\ngltf = \"lit.gltf\"\ngltf_camera = \"Sde\"\n{object}"
+    ))
+    .unwrap_err();
+    assert!(
+        e.contains("no camera named `Sde`") && e.contains("did you mean `Side`?"),
+        "{e}"
+    );
+    let e = scene_text(&format!(
+        "[camera]\ngltf = \"lit.gltf\"\nfov = 30\n{object}"
+    ))
+    .unwrap_err();
+    assert!(e.contains("`fov` comes from the glTF file's camera"), "{e}");
+    let e = scene_text(&format!("[camera]\ngltf = \"two-cubes.gltf\"\n{object}")).unwrap_err();
+    assert!(e.contains("two-cubes.gltf has no camera"), "{e}");
+}
+
+/// `lights = true` adds the file's KHR_lights_punctual lights, placed by their nodes and
+/// the object's transform, their photometric intensities over 683 lm/W.
+#[test]
+fn a_files_lights_join_the_scene() {
+    use snell::light::{Falloff, Light};
+    let scene = scene_text(
+        "[camera]\nlook_at = [0, 0, -1]\n[[objects]]\ntype = \"mesh\"\nfile = \"lit.gltf\"\n\
+         lights = true\ntransform = { translate = [1, 0, 0] }\n",
+    )
+    .unwrap();
+    assert_eq!(scene.lights.len(), 3, "{:?}", scene.lights);
+    let close = |a: Vec3A, b: Vec3A| (a - b).length() < 1e-5;
+    match scene.lights[0] {
+        Light::Point {
+            position,
+            color,
+            falloff,
+        } => {
+            assert!(close(position, Vec3A::new(1.0, 2.0, 3.0)), "{position}");
+            assert!(close(color, Vec3A::new(1.0, 0.0, 0.0)), "{color}");
+            assert_eq!(falloff, Some(Falloff::InverseSquare));
+        }
+        ref l => panic!("{l:?}"),
+    }
+    match scene.lights[1] {
+        Light::Spot {
+            position,
+            direction,
+            color,
+            cos_outer,
+            cos_inner,
+            ..
+        } => {
+            assert!(close(position, Vec3A::new(1.0, 0.0, 4.0)), "{position}");
+            assert!(close(direction, Vec3A::NEG_Z), "{direction}");
+            assert!(close(color, Vec3A::splat(2.0)), "{color}");
+            assert!(
+                (cos_outer - 0.4f32.cos()).abs() < 1e-6 && (cos_inner - 0.2f32.cos()).abs() < 1e-6
+            );
+        }
+        ref l => panic!("{l:?}"),
+    }
+    match scene.lights[2] {
+        Light::Directional { direction, color } => {
+            assert!(close(direction, Vec3A::NEG_Y), "{direction}");
+            assert!(close(color, Vec3A::splat(2.0)), "{color}");
+        }
+        ref l => panic!("{l:?}"),
+    }
+    // Without the key the file's lights stay out (on an OBJ the key is an error:
+    // tests/bad/127-lights-on-obj.toml).
+    let scene = scene_text(
+        "[camera]\nlook_at = [0, 0, -1]\n[[objects]]\ntype = \"mesh\"\nfile = \"lit.gltf\"\n",
+    )
+    .unwrap();
+    assert!(scene.lights.is_empty());
+}

@@ -335,6 +335,8 @@ up = [0, 1, 0]
 fov = 40
 aperture = 0.1
 focus_distance = 6
+gltf = "scene.glb"
+gltf_camera = "Main"
 [world]
 ambient = [0.1, 0.1, 0.2]
 [fog]
@@ -520,6 +522,7 @@ vertices = [[0, 0, 0], [1, 0, 0], [0, 1, 0]]
 type = "mesh"
 file = "statue.obj"
 smooth = false
+lights = true
 [[objects]]
 type = "mesh"
 mesh = "statue"

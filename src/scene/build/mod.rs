@@ -18,7 +18,7 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
-mod camera;
+pub(super) mod camera;
 mod csg;
 mod emitters;
 mod environment;
@@ -544,7 +544,7 @@ impl Builder<'_> {
             }
         }
 
-        let lights: Vec<Light> = def
+        let mut lights: Vec<Light> = def
             .lights
             .iter()
             .enumerate()
@@ -588,6 +588,29 @@ impl Builder<'_> {
                         }
                     }
                     objects.push(obj);
+                }
+            }
+            if let ObjectDef::Mesh(m) = o
+                && m.lights == Some(true)
+            {
+                let at = path.key("lights");
+                let gltf = m.file.as_deref().filter(|f| {
+                    let f = f.to_ascii_lowercase();
+                    f.ends_with(".gltf") || f.ends_with(".glb")
+                });
+                match gltf {
+                    Some(file) => {
+                        let placement = m
+                            .transform
+                            .as_ref()
+                            .and_then(|t| self.transform(t, &path.key("transform")));
+                        lights.extend(self.gltf_lights(file, placement.as_ref(), &at));
+                    }
+                    None => self.error_help(
+                        at,
+                        "`lights` adds a glTF file's lights, and this object places no glTF `file`",
+                        "remove it, or place a .gltf or .glb file with file = \"FILE\"",
+                    ),
                 }
             }
         }

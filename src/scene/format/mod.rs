@@ -155,8 +155,13 @@ pub struct CameraDef {
     /// Eye position.
     #[serde(default)]
     pub position: V3,
-    /// Point looked at.
-    pub look_at: V3,
+    /// Point looked at (required unless `gltf` places the camera).
+    pub look_at: Option<V3>,
+    /// A glTF file (.gltf, .glb) whose camera this is: its placement, field of view or
+    /// orthographic size replace `position`, `look_at`, `up`, `fov`, `type` and `height`.
+    pub gltf: Option<String>,
+    /// Which of the file's cameras, by name (default: the first its nodes place).
+    pub gltf_camera: Option<String>,
     /// Which way is up.
     #[serde(default = "y_axis")]
     pub up: V3,
@@ -570,6 +575,9 @@ object_defs! {
         mesh: Option<String>,
         /// As `smooth` under `[meshes]` (only with `file`).
         smooth: Option<bool>,
+        /// glTF: whether the file's KHR_lights_punctual lights join the scene, placed as
+        /// its meshes are (default false; only with `file`).
+        lights: Option<bool>,
     }
 }
 

@@ -2,6 +2,7 @@
 //! materials as snell's (material.rs), and one placement per node that shows a mesh.
 
 mod material;
+mod placed;
 
 use super::build::Builder;
 use super::diag::DocPath;

@@ -25,6 +25,11 @@ cutout.gltf (+ cutout.bin, leaf.png): alpha modes. The unit quad of pbr-maps.glt
 three times: `Leaf` at the origin (alphaMode MASK, cutoff 0.5, base colour leaf.png:
 left half alpha 0, right half alpha 255), `Veil` at x = 3 (BLEND, alpha factor 0.25, no
 image) and `Wall` 1 behind both, scaled by 8 (opaque).
+lit.gltf (+ cutout.bin): the quad with cameras and KHR_lights_punctual lights: camera
+`Front` at (0, 0, 5) looking down -z (yfov 0.5), camera `Side` at (5, 0, 0) turned 90
+degrees about y (looking down -x; orthographic, ymag 2); a point light `Bulb` at
+(0, 2, 3) of 683 cd, red; a spot light `Spot` at (0, 0, 4) (inner 0.2, outer 0.4 rad, 1366 cd);
+a directional light `Sun` turned -90 degrees about x (shining down -y) of 1366 lux.
 The broken files (each with the same two-cubes.bin unless said):
   bad-accessor.gltf   the POSITION accessor claims more vertices than its view holds
   bad-index.gltf      an index points past the vertices (its own bad-index.bin)
@@ -225,6 +230,42 @@ def cutout():
     return doc, data
 
 
+def lit():
+    """lit.gltf: the quad, two cameras and three lights."""
+    doc, data = cutout()
+    q = 0.5 ** 0.5
+    doc['extensionsUsed'] = ['KHR_lights_punctual']
+    doc['scenes'] = [{'name': 'Scene', 'nodes': [0, 1, 2, 3, 4, 5]}]
+    doc['nodes'] = [
+        {'name': 'Quad', 'mesh': 0},
+        {'name': 'Front', 'camera': 0, 'translation': [0, 0, 5]},
+        {'name': 'SideNode', 'camera': 1, 'translation': [5, 0, 0], 'rotation': [0, q, 0, q]},
+        {'name': 'BulbNode', 'translation': [0, 2, 3],
+         'extensions': {'KHR_lights_punctual': {'light': 0}}},
+        {'name': 'SpotNode', 'translation': [0, 0, 4],
+         'extensions': {'KHR_lights_punctual': {'light': 1}}},
+        {'name': 'SunNode', 'rotation': [-q, 0, 0, q],
+         'extensions': {'KHR_lights_punctual': {'light': 2}}},
+    ]
+    doc['cameras'] = [
+        {'name': 'Front', 'type': 'perspective',
+         'perspective': {'yfov': 0.5, 'znear': 0.1, 'aspectRatio': 1.5}},
+        {'name': 'Side', 'type': 'orthographic',
+         'orthographic': {'xmag': 3, 'ymag': 2, 'znear': 0.1, 'zfar': 100}},
+    ]
+    doc['extensions'] = {'KHR_lights_punctual': {'lights': [
+        {'name': 'Bulb', 'type': 'point', 'color': [1, 0, 0], 'intensity': 683},
+        {'name': 'Spot', 'type': 'spot', 'intensity': 1366,
+         'spot': {'innerConeAngle': 0.2, 'outerConeAngle': 0.4}},
+        {'name': 'Sun', 'type': 'directional', 'intensity': 1366},
+    ]}}
+    doc['meshes'] = doc['meshes'][2:]
+    doc['materials'] = doc['materials'][2:]
+    doc['meshes'][0]['primitives'][0]['material'] = 0
+    del doc['textures'], doc['images']
+    return doc, data
+
+
 def write(name, doc):
     with open(os.path.join(HERE, name), 'w') as f:
         json.dump(doc, f, indent=1)
@@ -262,6 +303,7 @@ def main():
     with open(os.path.join(HERE, 'cutout.bin'), 'wb') as f:
         f.write(cut_data)
     write('cutout.gltf', cut)
+    write('lit.gltf', lit()[0])
     with open(os.path.join(HERE, 'leaf.png'), 'wb') as f:
         f.write(png_rgba(2, 1, [(40, 160, 40, 0), (40, 160, 40, 255)]))
     for name, w, h, px in [

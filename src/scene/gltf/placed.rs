@@ -1,0 +1,183 @@
+//! A glTF file's cameras and KHR_lights_punctual lights as the scene's: `[camera] gltf`
+//! takes a camera, a mesh object's `lights = true` adds its file's lights, placed as its
+//! meshes are. Photometric units become snell's by the luminous efficacy Blender's exporter
+//! multiplies by (683 lm/W): a point light of I candela shines I / 683 per steradian, a
+//! directional light of E lux gives E / 683.
+
+use crate::camera::Projection;
+use crate::light::{Falloff, Light};
+use crate::math::{Color, Transform, Vec3A};
+use crate::mesh_file::gltf::{self, GltfLightKind};
+use crate::scene::build::Builder;
+use crate::scene::build::camera::Placement;
+use crate::scene::diag::{DocPath, did_you_mean};
+use crate::scene::format::{CameraDef, CameraKind};
+
+/// Lumens per watt: glTF's photometric units to snell's.
+const EFFICACY: f32 = 683.0;
+
+/// Column `c` of a column-major matrix, as a vector.
+fn column(m: &[[f32; 4]; 4], c: usize) -> Vec3A {
+    Vec3A::new(m[c][0], m[c][1], m[c][2])
+}
+
+impl Builder<'_> {
+    /// The placement of the camera `[camera] gltf` names (see docs/scene-format.md).
+    pub(in crate::scene) fn gltf_camera(
+        &mut self,
+        d: &CameraDef,
+        file: &str,
+        path: &DocPath,
+    ) -> Option<Placement> {
+        let given = [
+            (d.look_at.is_some(), "look_at"),
+            (d.fov.is_some(), "fov"),
+            (d.height.is_some(), "height"),
+            (d.kind == CameraKind::Orthographic, "type"),
+        ];
+        for (_, key) in given.iter().filter(|(g, _)| *g) {
+            self.error_help(
+                path.key(key),
+                format!("`{key}` comes from the glTF file's camera"),
+                "remove it, or remove `gltf` to place the camera here",
+            );
+        }
+        let full = self.base_dir.join(file);
+        self.files.push(full.clone());
+        let scene = match gltf::load_placements(&full) {
+            Ok(s) => s,
+            Err(e) => {
+                self.error(path.key("gltf"), format!("cannot load glTF file: {e}"));
+                return None;
+            }
+        };
+        let camera = match &d.gltf_camera {
+            None => scene.cameras.first(),
+            Some(name) => scene.cameras.iter().find(|c| &c.name == name),
+        };
+        let Some(c) = camera else {
+            let names: Vec<&str> = scene.cameras.iter().map(|c| c.name.as_str()).collect();
+            let (at, message, help) = match &d.gltf_camera {
+                None => (
+                    path.key("gltf"),
+                    format!("{file} has no camera"),
+                    "add one in the file (in Blender, export with Cameras ticked), or place the camera with look_at".to_string(),
+                ),
+                Some(name) => (
+                    path.key("gltf_camera"),
+                    format!("{file} has no camera named `{name}`"),
+                    match did_you_mean(name, names.iter().copied()) {
+                        Some(s) => format!("did you mean `{s}`?"),
+                        None if names.is_empty() => "it has no cameras".to_string(),
+                        None => format!("its cameras: {}", names.join(", ")),
+                    },
+                ),
+            };
+            self.error_help(at, message, help);
+            return None;
+        };
+        let position = column(&c.matrix, 3);
+        let forward = -column(&c.matrix, 2);
+        let up = column(&c.matrix, 1);
+        let usable = |v: Vec3A| v.is_finite() && v.length_squared() > 0.0;
+        if !(position.is_finite() && usable(forward) && usable(up))
+            || forward.normalize().cross(up.normalize()).length() < 1e-6
+        {
+            self.error(
+                path.key("gltf"),
+                format!(
+                    "camera `{}` of {file} has a node matrix that places no view",
+                    c.name
+                ),
+            );
+            return None;
+        }
+        let (fov, projection) = match c.yfov {
+            Some(y) if y > 0.0 && y.to_degrees() < 180.0 => {
+                (y.to_degrees(), Projection::Perspective)
+            }
+            None if c.ymag.is_finite() && c.ymag > 0.0 => (
+                45.0,
+                Projection::Orthographic {
+                    height: 2.0 * c.ymag,
+                },
+            ),
+            _ => {
+                self.error(
+                    path.key("gltf"),
+                    format!(
+                        "camera `{}` of {file} has no usable field of view or size",
+                        c.name
+                    ),
+                );
+                return None;
+            }
+        };
+        Some(Placement {
+            position,
+            look_at: position + forward.normalize(),
+            up: up.normalize(),
+            fov,
+            projection,
+        })
+    }
+
+    /// The KHR_lights_punctual lights of glTF file `file`, placed by their nodes and then
+    /// by `placement`.
+    pub(in crate::scene) fn gltf_lights(
+        &mut self,
+        file: &str,
+        placement: Option<&Transform>,
+        path: &DocPath,
+    ) -> Vec<Light> {
+        let full = self.base_dir.join(file);
+        let scene = match gltf::load_placements(&full) {
+            Ok(s) => s,
+            Err(e) => {
+                self.error(path.clone(), format!("cannot load glTF file: {e}"));
+                return vec![];
+            }
+        };
+        if scene.lights.is_empty() {
+            self.warnings.push(format!(
+                "{file} has no KHR_lights_punctual lights, so `lights = true` adds none"
+            ));
+        }
+        let place_point = |p: Vec3A| placement.map_or(p, |t| t.point_to_world(p));
+        let place_vector = |v: Vec3A| placement.map_or(v, |t| t.vector_to_world(v));
+        let mut out = vec![];
+        for l in &scene.lights {
+            let color = Color::from(l.color).max(Color::ZERO) * (l.intensity.max(0.0) / EFFICACY);
+            let position = place_point(column(&l.matrix, 3));
+            let direction = place_vector(-column(&l.matrix, 2)).normalize_or_zero();
+            if !color.is_finite() || !position.is_finite() || !direction.is_finite() {
+                self.warnings.push(format!(
+                    "{file}: light `{}` has a value that is not a number: skipped",
+                    l.name
+                ));
+                continue;
+            }
+            out.push(match l.kind {
+                GltfLightKind::Point => Light::Point {
+                    position,
+                    color,
+                    falloff: Some(Falloff::InverseSquare),
+                },
+                GltfLightKind::Directional => Light::Directional { direction, color },
+                GltfLightKind::Spot { inner, outer } => {
+                    let outer = outer.clamp(1e-4, std::f32::consts::FRAC_PI_2);
+                    let inner = inner.clamp(0.0, outer);
+                    Light::Spot {
+                        position,
+                        direction,
+                        color,
+                        cos_outer: outer.cos(),
+                        cos_inner: inner.cos(),
+                        falloff: Some(Falloff::InverseSquare),
+                    }
+                }
+            });
+        }
+        out
+    }
+}
