@@ -36,12 +36,8 @@ impl Cutout {
         match *self {
             Cutout::Mask { cutoff, .. } => alpha < cutoff,
             Cutout::Blend { .. } => {
-                let bits = |v: crate::math::Vec3A| {
-                    (v.x.to_bits() as u64) << 32
-                        ^ (v.y.to_bits() as u64) << 16
-                        ^ v.z.to_bits() as u64
-                };
-                let h = hash_seed(&[bits(ray.origin), bits(ray.dir), t.to_bits() as u64]);
+                let (o, d) = (ray.origin, ray.dir);
+                let h = hash_seed(&[o.x, o.y, o.z, d.x, d.y, d.z, t].map(|x| x.to_bits() as u64));
                 let u = (h >> 40) as f32 / (1u64 << 24) as f32;
                 u >= alpha
             }
@@ -81,6 +77,18 @@ mod tests {
                 / n as f32;
             assert!((holes - (1.0 - alpha)).abs() < 0.015, "{alpha}: {holes}");
         }
+        // Camera rays: one origin, directions a hair apart.
+        let o = Vec3A::new(0.3, 1.0, 5.0);
+        let n = 20_000;
+        let holes = (0..n)
+            .filter(|k| {
+                let (x, y) = ((k % 200) as f32 * 1e-4, (k / 200) as f32 * 1e-4);
+                let d = Vec3A::new(x, y, -1.0).normalize();
+                b.is_hole(0.25, &Ray::new(o, d), 5.0 / d.z.abs())
+            })
+            .count() as f32
+            / n as f32;
+        assert!((holes - 0.75).abs() < 0.015, "{holes}");
         // The same ray decides the same way.
         let r = Ray::new(Vec3A::new(0.1, 0.2, 0.3), Vec3A::Z);
         assert_eq!(b.is_hole(0.5, &r, 2.0), b.is_hole(0.5, &r, 2.0));

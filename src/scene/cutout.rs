@@ -42,10 +42,12 @@ impl Scene {
         force_uv: bool,
     ) -> Option<Hit> {
         let (mut r, mut left, mut skip, mut travelled) = (*ray, t_max, skip, 0.0);
-        for _ in 0..MAX_HOLES {
+        for k in 0..MAX_HOLES {
             let (i, h) = self.accel.closest_hit(&self.objects, &r, left, skip)?;
             let mut hit = self.hit_details(&r, i, h, force_uv || self.cutouts[i]);
-            if !(self.cutouts[i] && self.is_hole(&hit, &r)) {
+            // Past the last hole allowed, what the ray meets counts as solid.
+            let last = k + 1 == MAX_HOLES;
+            if last || !(self.cutouts[i] && self.is_hole(&hit, &r)) {
                 hit.t += travelled;
                 return Some(hit);
             }
@@ -53,7 +55,7 @@ impl Scene {
             (r, left) = Self::through(&hit, &r, left);
             skip = Skip::NONE;
         }
-        None
+        unreachable!("the last pass returns")
     }
 
     /// Whether anything but `skip` that is not a hole blocks the ray in `(0, t_max)`.

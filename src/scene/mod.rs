@@ -448,7 +448,7 @@ impl Scene {
     #[inline]
     pub fn closest_transparent_hit(&self, ray: &Ray, t_max: f32) -> Option<Hit> {
         let (mut r, mut left, mut travelled) = (*ray, t_max, 0.0);
-        for _ in 0..cutout::MAX_HOLES {
+        for k in 0..cutout::MAX_HOLES {
             let mut best: Option<(usize, ShapeHit)> = None;
             for &i in &self.transparent_objects {
                 if let Some(h) = self.objects[i].intersect(&r, best.map_or(left, |b| b.1.t)) {
@@ -457,14 +457,16 @@ impl Scene {
             }
             let (i, h) = best?;
             let mut hit = self.hit_details(&r, i, h, self.cutouts[i]);
-            if !(self.cutouts[i] && self.is_hole(&hit, &r)) {
+            // Past the last hole allowed, what the ray meets counts as solid.
+            let last = k + 1 == cutout::MAX_HOLES;
+            if last || !(self.cutouts[i] && self.is_hole(&hit, &r)) {
                 hit.t += travelled;
                 return Some(hit);
             }
             travelled += hit.t;
             (r, left) = Self::through(&hit, &r, left);
         }
-        None
+        unreachable!("the last pass returns")
     }
 
     /// The radiance that area light `light` sends back along the ray from `origin` (unit

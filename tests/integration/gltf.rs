@@ -208,6 +208,16 @@ fn every_map_of_a_material_is_read() {
         (n - Vec3A::new(0.0, 1.0, 1.0).normalize()).length() < 0.01,
         "{n}"
     );
+    // A negative uv_scale mirrors u: the map's +x now points along -x.
+    let mirrored = scene_with("pbr-maps.gltf", "uv_scale = [-1, 1]");
+    let mut h = hit(&mirrored, [-2.25, 0.1, 5.0], [0.0, 0.0, -1.0]);
+    let tex = h.tex;
+    mirrored.with_detail(&mut h, &tex);
+    let n = h.shading_normal;
+    assert!(
+        (n - Vec3A::new(-1.0, 0.0, 1.0).normalize()).length() < 0.01,
+        "{n}"
+    );
 }
 
 /// Alpha modes (tests/data/gltf/cutout.gltf): `MASK` cuts holes where the base colour's
@@ -342,4 +352,30 @@ fn a_files_lights_join_the_scene() {
     )
     .unwrap();
     assert!(scene.lights.is_empty());
+}
+
+/// A glTF file's images are held to the texture limit, as every texture is.
+#[test]
+fn a_glb_image_over_the_texture_limit_is_refused() {
+    let dir = super::scratch("gltf-limit");
+    let file = repo("tests/data/gltf/pbr-maps.gltf");
+    let scene = dir.join("t.toml");
+    std::fs::write(
+        &scene,
+        format!(
+            "[camera]\nlook_at = [0, 0, -1]\n[[objects]]\ntype = \"mesh\"\nfile = {:?}\n",
+            file.to_string_lossy()
+        ),
+    )
+    .unwrap();
+    let limits = snell::scene::Limits {
+        max_texture_pixels: 1,
+        ..snell::scene::Limits::default()
+    };
+    let e = format!(
+        "{:?}",
+        snell::scene::load_with(&scene, &limits).unwrap_err()
+    );
+    assert!(e.contains("more than the 1 a texture may have"), "{e}");
+    assert!(snell::scene::load_with(&scene, &snell::scene::Limits::default()).is_ok());
 }

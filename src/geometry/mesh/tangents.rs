@@ -16,8 +16,8 @@ pub type Tangent = [f32; 4];
 impl Mesh {
     /// Works out the per-corner tangents if the mesh has none yet (MikkTSpace over its
     /// positions, normals and uvs; the face normal where it has no normals). Does nothing for
-    /// a mesh without uvs: its texture coordinates are each triangle's barycentrics, and a
-    /// normal map reads the frame of each triangle instead.
+    /// a mesh without uvs (its texture coordinates are each triangle's barycentrics): a
+    /// normal map then reads the tangents its file gave, or else the frame of each triangle.
     pub fn ensure_tangents(&self) {
         if self.uvs.is_empty() {
             return;

@@ -54,6 +54,11 @@ impl Builder<'_> {
                 }
             }
         };
+        if d.gltf.is_some() && aperture > 0.0 && d.focus_distance.is_none() {
+            self.warnings.push(
+                "camera.aperture with a glTF file's camera and no focus_distance: the focus is 1 scene unit away".into(),
+            );
+        }
         if d.focus_distance.is_some() && aperture == 0.0 {
             self.warnings.push(
                 "camera.focus_distance does nothing without an aperture: a pinhole keeps everything sharp".into(),

@@ -21,7 +21,12 @@ pub(super) fn area_lights(
     let mut of_object = vec![ObjectLights::None; objects.len()];
     // Each emitting material's mean radiance (a texture's over its pattern), which a light's
     // power is taken from, and its texture.
+    // Cut-outs are left to the paths that hit them: a light sample would land in their
+    // holes too.
     let emitting = |m: usize| {
+        if materials[m].cutout.is_some() {
+            return None;
+        }
         let e = materials[m].emission?;
         let texture = match e.radiance {
             ColorParam::Texture(t) => Some(t),

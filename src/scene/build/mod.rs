@@ -593,25 +593,7 @@ impl Builder<'_> {
             if let ObjectDef::Mesh(m) = o
                 && m.lights == Some(true)
             {
-                let at = path.key("lights");
-                let gltf = m.file.as_deref().filter(|f| {
-                    let f = f.to_ascii_lowercase();
-                    f.ends_with(".gltf") || f.ends_with(".glb")
-                });
-                match gltf {
-                    Some(file) => {
-                        let placement = m
-                            .transform
-                            .as_ref()
-                            .and_then(|t| self.transform(t, &path.key("transform")));
-                        lights.extend(self.gltf_lights(file, placement.as_ref(), &at));
-                    }
-                    None => self.error_help(
-                        at,
-                        "`lights` adds a glTF file's lights, and this object places no glTF `file`",
-                        "remove it, or place a .gltf or .glb file with file = \"FILE\"",
-                    ),
-                }
+                lights.extend(self.gltf_object_lights(m, &path));
             }
         }
         for ((name, _), used) in named_meshes.iter().zip(&used_meshes) {

@@ -107,6 +107,10 @@ impl Scene {
             }
             SurfaceDetail::Bump { height, .. } => {
                 let f = self.uv_frame(hit, &texture.mapping)?;
+                // The frame in the shading plane (pbrt's shading dpdu): the geometric plane's
+                // would give a smooth mesh its facets back.
+                let flat = |d: Vec3A| d - n * n.dot(d);
+                let (dpdu, dpdv) = (flat(f.dpdu), flat(f.dpdv));
                 // Differences over half the footprint in uv (pbrt's), or a thousandth of a
                 // unit where there is none.
                 let step = match tex.area() {
@@ -120,7 +124,9 @@ impl Scene {
                 let h = |p: &TexturePoint| texture.eval(p).element_sum() / 3.0 * height;
                 let here = h(tex);
                 // The point a step along u or v: moved on the surface (for mappings that
-                // read the point) and in the shape's uv (for those that read it).
+                // read the point) and in the shape's uv (for those that read it, where the
+                // texture's uv is the shape's: a transformed uv would need the step taken
+                // back through its map, and only glTF files make one, with no bump maps).
                 let moved = |k: usize| {
                     let mut p = *tex;
                     p.point += f.local[k] * step;
@@ -129,7 +135,7 @@ impl Scene {
                 };
                 let dhdu = (h(&moved(0)) - here) / step;
                 let dhdv = (h(&moved(1)) - here) / step;
-                bumped_normal(f.dpdu, f.dpdv, n, dhdu, dhdv)
+                bumped_normal(dpdu, dpdv, n, dhdu, dhdv)
             }
         }
     }
@@ -142,6 +148,8 @@ impl Scene {
         let (t, up) = match &o.shape {
             Shape::Mesh(m) if mapping.keeps_uv_axes() && m.has_tangents() => {
                 let (t, b) = m.tangent_frame(hit.tex.point, hit.prim)?;
+                // A negative `uv_scale` mirrors the texture along that axis.
+                let (t, b) = (t * o.uv_scale.x.signum(), b * o.uv_scale.y.signum());
                 match &o.transform {
                     None => (t, b),
                     Some(x) => (x.vector_to_world(t), x.vector_to_world(b)),

@@ -130,3 +130,36 @@ fn a_normal_pointing_below_the_surface_is_kept_above_it() {
     let n = shading_normal(&s, Vec3A::new(0.0, 1.0, 0.0), Vec3A::new(0.1, 0.0, 0.0));
     assert!(n.y > 0.0 && n.y < 0.02 && n.x < -0.99, "{n}");
 }
+
+#[test]
+fn a_flat_bump_map_keeps_a_smooth_meshs_normals() {
+    // The teapot, smooth: a bump map of one value everywhere changes nothing, where the
+    // geometric plane's frame would give the facets back.
+    let text = "[camera]\nlook_at = [0, 0, -1]\n\
+        [textures.t]\ntype = \"checker\"\neven = 0.5\nodd = 0.5\n\
+        [materials.m]\ncolor = 1\nbump = \"t\"\nbump_height = 0.1\n\
+        [[objects]]\ntype = \"mesh\"\nfile = \"assets/models/teapot.obj\"\nsmooth = true\nmaterial = \"m\"\n";
+    let s = load_str(text, Path::new("t.toml"), Path::new("."), Format::Toml).unwrap();
+    let mut checked = 0;
+    for k in 0..40 {
+        let a = k as f32 * 0.157;
+        let from = Vec3A::new(6.0 * a.cos(), 1.0 + 0.05 * k as f32, 6.0 * a.sin());
+        let Some(mut hit) = s.closest_hit(&Ray::new(from, (-from).normalize()), f32::INFINITY)
+        else {
+            continue;
+        };
+        let smooth = hit.shading_normal;
+        let tex = hit.tex;
+        s.with_detail(&mut hit, &tex);
+        assert!(
+            close(hit.shading_normal, smooth, 1e-4),
+            "{smooth} became {}",
+            hit.shading_normal
+        );
+        checked += (smooth.dot(hit.normal) < 0.9999) as usize;
+    }
+    assert!(
+        checked > 10,
+        "too few hits where the smooth normal is not the face's"
+    );
+}

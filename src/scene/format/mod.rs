@@ -158,7 +158,9 @@ pub struct CameraDef {
     /// Point looked at (required unless `gltf` places the camera).
     pub look_at: Option<V3>,
     /// A glTF file (.gltf, .glb) whose camera this is: its placement, field of view or
-    /// orthographic size replace `position`, `look_at`, `up`, `fov`, `type` and `height`.
+    /// orthographic size stand for `position`, `look_at`, `up`, `fov`, `type` and `height`
+    /// (`look_at`, `fov`, `type` and `height` are then errors; `position` and `up` are not
+    /// read).
     pub gltf: Option<String>,
     /// Which of the file's cameras, by name (default: the first its nodes place).
     pub gltf_camera: Option<String>,

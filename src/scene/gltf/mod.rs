@@ -43,6 +43,24 @@ impl Builder<'_> {
         let stem = Path::new(file)
             .file_name()
             .map_or(file.into(), |n| n.to_string_lossy());
+        // Images are held to the limit every texture is (a map may be copied as floats).
+        let limit = self.limits.max_texture_pixels;
+        if let Some((i, img)) = scene.images.iter().enumerate().find_map(|(i, img)| {
+            img.as_ref()
+                .filter(|img| img.width() as u64 * img.height() as u64 > limit)
+                .map(|img| (i, img))
+        }) {
+            self.error_help(
+                path.clone(),
+                format!(
+                    "{file}: image {i} is {} x {} texels, more than the {limit} a texture may have",
+                    img.width(),
+                    img.height()
+                ),
+                "raise the limit with --max-texture-pixels, or make the image smaller",
+            );
+            return None;
+        }
         let mut images = material::Images::new(scene.images);
         // Scene materials for the file's materials, and for glTF's default one, made when
         // a mesh first uses them.

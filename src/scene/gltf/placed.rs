@@ -11,7 +11,7 @@ use crate::mesh_file::gltf::{self, GltfLightKind};
 use crate::scene::build::Builder;
 use crate::scene::build::camera::Placement;
 use crate::scene::diag::{DocPath, did_you_mean};
-use crate::scene::format::{CameraDef, CameraKind};
+use crate::scene::format::{CameraDef, CameraKind, MeshObjectDef};
 
 /// Lumens per watt: glTF's photometric units to snell's.
 const EFFICACY: f32 = 683.0;
@@ -122,9 +122,44 @@ impl Builder<'_> {
         })
     }
 
+    /// The lights a mesh object with `lights = true` adds: its glTF file's, placed by the
+    /// object's transform (an error for an object that places no glTF file).
+    pub(in crate::scene) fn gltf_object_lights(
+        &mut self,
+        m: &MeshObjectDef,
+        path: &DocPath,
+    ) -> Vec<Light> {
+        let at = path.key("lights");
+        let gltf = m.file.as_deref().filter(|f| {
+            let f = f.to_ascii_lowercase();
+            f.ends_with(".gltf") || f.ends_with(".glb")
+        });
+        let Some(file) = gltf else {
+            self.error_help(
+                at,
+                "`lights` adds a glTF file's lights, and this object places no glTF `file`",
+                "remove it, or place a .gltf or .glb file with file = \"FILE\"",
+            );
+            return vec![];
+        };
+        // The object's transform as its meshes got it (checked, and any problem with it
+        // reported, when the object was built).
+        let placement = m.transform.as_ref().and_then(|t| {
+            let v = |a: [f32; 3]| crate::math::Vec3::from(a);
+            let ok = [t.scale.0, t.rotate, t.translate]
+                .iter()
+                .flatten()
+                .all(|x| x.is_finite())
+                && t.scale.0.iter().all(|&x| x != 0.0);
+            ok.then(|| Transform::from_srt(v(t.scale.0), v(t.rotate), v(t.translate)))
+                .flatten()
+        });
+        self.gltf_lights(file, placement.as_ref(), &at)
+    }
+
     /// The KHR_lights_punctual lights of glTF file `file`, placed by their nodes and then
     /// by `placement`.
-    pub(in crate::scene) fn gltf_lights(
+    fn gltf_lights(
         &mut self,
         file: &str,
         placement: Option<&Transform>,
@@ -153,6 +188,13 @@ impl Builder<'_> {
             if !color.is_finite() || !position.is_finite() || !direction.is_finite() {
                 self.warnings.push(format!(
                     "{file}: light `{}` has a value that is not a number: skipped",
+                    l.name
+                ));
+                continue;
+            }
+            if direction == Vec3A::ZERO && l.kind != GltfLightKind::Point {
+                self.warnings.push(format!(
+                    "{file}: light `{}` points nowhere (its node is scaled to 0): skipped",
                     l.name
                 ));
                 continue;

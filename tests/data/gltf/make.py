@@ -38,6 +38,9 @@ The broken files (each with the same two-cubes.bin unless said):
   missing-buffer.gltf the buffer's file does not exist
   needs-draco.gltf    requires KHR_draco_mesh_compression
   not-json.gltf       not JSON at all
+  camera-type.gltf    lit.gltf with a camera of type orthographic that holds only a
+                      perspective projection (the gltf crate's reader unwraps the one the
+                      type names; uses cutout.bin)
   short-header.glb    a GLB whose header gives a length shorter than the header
 """
 import json
@@ -266,6 +269,24 @@ def lit():
     return doc, data
 
 
+def as_glb(doc, data):
+    """The document and its buffer (its images read from beside this script and moved
+    into the buffer) as one GLB file's bytes."""
+    doc = json.loads(json.dumps(doc))
+    blob = data
+    for im in doc.get('images', []):
+        with open(os.path.join(HERE, im.pop('uri')), 'rb') as f:
+            png_bytes = f.read()
+        doc['bufferViews'].append({'buffer': 0, 'byteOffset': len(blob), 'byteLength': len(png_bytes)})
+        im['bufferView'] = len(doc['bufferViews']) - 1
+        blob += png_bytes + b'\x00' * (-len(png_bytes) % 4)
+    doc['buffers'] = [{'byteLength': len(blob)}]
+    js = json.dumps(doc).encode()
+    js += b' ' * (-len(js) % 4)
+    body = struct.pack('<I4s', len(js), b'JSON') + js + struct.pack('<I4s', len(blob), b'BIN\x00') + blob
+    return struct.pack('<4sII', b'glTF', 2, 12 + len(body)) + body
+
+
 def write(name, doc):
     with open(os.path.join(HERE, name), 'w') as f:
         json.dump(doc, f, indent=1)
@@ -304,6 +325,9 @@ def main():
         f.write(cut_data)
     write('cutout.gltf', cut)
     write('lit.gltf', lit()[0])
+    odd = lit()[0]
+    odd['cameras'][0]['type'] = 'orthographic'
+    write('camera-type.gltf', odd)
     with open(os.path.join(HERE, 'leaf.png'), 'wb') as f:
         f.write(png_rgba(2, 1, [(40, 160, 40, 0), (40, 160, 40, 255)]))
     for name, w, h, px in [
@@ -314,6 +338,13 @@ def main():
     ]:
         with open(os.path.join(HERE, name), 'wb') as f:
             f.write(png(w, h, px))
+
+    # Fuzz seeds: each of these as one self-contained GLB.
+    seeds = os.path.join(HERE, '..', '..', '..', 'fuzz', 'seeds', 'gltf')
+    for name, (d, b) in [('pbr-maps.glb', (maps, maps_data)), ('cutout.glb', (cut, cut_data)),
+                         ('lit.glb', (lit()[0], cut_data))]:
+        with open(os.path.join(seeds, name), 'wb') as f:
+            f.write(as_glb(d, b))
 
     bad = json.loads(json.dumps(doc))
     bad['accessors'][0]['count'] = 2400

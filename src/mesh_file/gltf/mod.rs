@@ -9,6 +9,12 @@
 //! glTF's axes are snell's (+y up, right-handed, metres), and its texture coordinates put
 //! v = 0 at the top of the image, as snell does.
 
+mod material;
+mod placed;
+
+pub use material::{Alpha, PbrMaterial, TextureRef, uv_transform};
+pub use placed::{GltfCamera, GltfLight, GltfLightKind};
+
 use super::{MeshData, MeshError};
 use gltf::mesh::Mode;
 use std::collections::HashMap;
@@ -30,55 +36,10 @@ pub struct GltfScene {
     pub warnings: Vec<String>,
     /// The files read besides the glTF file itself (external buffers and images).
     pub files: Vec<PathBuf>,
-    /// The cameras the nodes place, in the nodes' order.
+    /// The cameras the nodes place (the default scene's node tree, depth first).
     pub cameras: Vec<GltfCamera>,
     /// The KHR_lights_punctual lights the nodes place.
     pub lights: Vec<GltfLight>,
-}
-
-/// A camera placed by a node: it looks down its local -z with +y up (glTF's convention).
-#[derive(Clone, Debug, PartialEq)]
-pub struct GltfCamera {
-    /// The camera's name, or its node's, or `camera N`.
-    pub name: String,
-    /// Vertical field of view in radians (perspective), or `None` for orthographic.
-    pub yfov: Option<f32>,
-    /// Orthographic: half the view's height.
-    pub ymag: f32,
-    /// Its node's world matrix (column-major).
-    pub matrix: [[f32; 4]; 4],
-}
-
-/// A KHR_lights_punctual light placed by a node (spot and directional lights shine down
-/// the node's local -z).
-#[derive(Clone, Debug, PartialEq)]
-pub struct GltfLight {
-    /// The light's name, or `light N`.
-    pub name: String,
-    /// What kind.
-    pub kind: GltfLightKind,
-    /// Linear RGB.
-    pub color: [f32; 3],
-    /// Candela (point, spot) or lux (directional).
-    pub intensity: f32,
-    /// Its node's world matrix (column-major).
-    pub matrix: [[f32; 4]; 4],
-}
-
-/// The kinds of KHR_lights_punctual light.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum GltfLightKind {
-    /// From a point, every way.
-    Point,
-    /// From a point, in a cone: inner and outer half-angles in radians.
-    Spot {
-        /// Where the light starts to fall off.
-        inner: f32,
-        /// Where it reaches zero.
-        outer: f32,
-    },
-    /// Parallel, from far away.
-    Directional,
 }
 
 /// One glTF mesh as one snell mesh.
@@ -101,102 +62,6 @@ pub struct GltfInstance {
     pub node: String,
     /// Object to world, column-major, the product of the node's and its ancestors'.
     pub matrix: [[f32; 4]; 4],
-}
-
-/// A texture a material reads: its image, its uv set, and KHR_texture_transform's.
-#[derive(Clone, Debug, PartialEq)]
-pub struct TextureRef {
-    /// Index into [`GltfScene::images`].
-    pub image: usize,
-    /// Which texture coordinates it reads (0 or 1).
-    pub texcoord: u32,
-    /// KHR_texture_transform as `uv' = m[0] u + m[1] v + m[2]` (glTF's uv, `v` down the
-    /// image, as snell's), or `None`.
-    pub transform: Option<[[f32; 2]; 3]>,
-}
-
-/// How a material's alpha is read (glTF's `alphaMode`).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Alpha {
-    /// Alpha is ignored.
-    Opaque,
-    /// Alpha below the cutoff is a hole.
-    Mask(f32),
-    /// Alpha blends the surface with what lies behind it.
-    Blend,
-}
-
-/// A metallic-roughness material, as far as snell reads it.
-#[derive(Clone, Debug, PartialEq)]
-pub struct PbrMaterial {
-    /// Its name, or `material N`.
-    pub name: String,
-    /// Linear RGBA.
-    pub base_color: [f32; 4],
-    /// The base colour's image (sRGB), if any.
-    pub base_color_texture: Option<TextureRef>,
-    /// 0 dielectric, 1 metal.
-    pub metallic: f32,
-    /// Perceptual roughness (GGX alpha is its square).
-    pub roughness: f32,
-    /// The metallic (blue) and roughness (green) image (linear), if any: factors on
-    /// `metallic` and `roughness`.
-    pub metallic_roughness_texture: Option<TextureRef>,
-    /// The tangent-space normal map (linear), if any.
-    pub normal_texture: Option<TextureRef>,
-    /// Factor on the normal map's x and y.
-    pub normal_scale: f32,
-    /// Whether it has an occlusion map (which snell does not read).
-    pub occlusion: bool,
-    /// Emitted radiance, linear RGB (the factor times KHR_materials_emissive_strength).
-    pub emissive: [f32; 3],
-    /// The emissive image (sRGB), if any, times `emissive`.
-    pub emissive_texture: Option<TextureRef>,
-    /// KHR_materials_transmission's factor.
-    pub transmission: f32,
-    /// KHR_materials_ior's, 1.5 by default.
-    pub ior: f32,
-    /// Whether the back side is shaded too.
-    pub double_sided: bool,
-    /// `alphaMode` (with `alphaCutoff`).
-    pub alpha: Alpha,
-}
-
-impl Default for PbrMaterial {
-    /// glTF's default material: white, fully metallic and fully rough.
-    fn default() -> Self {
-        PbrMaterial {
-            name: "default".into(),
-            base_color: [1.0; 4],
-            base_color_texture: None,
-            metallic: 1.0,
-            roughness: 1.0,
-            metallic_roughness_texture: None,
-            normal_texture: None,
-            normal_scale: 1.0,
-            occlusion: false,
-            emissive: [0.0; 3],
-            emissive_texture: None,
-            transmission: 0.0,
-            ior: 1.5,
-            double_sided: false,
-            alpha: Alpha::Opaque,
-        }
-    }
-}
-
-impl PbrMaterial {
-    /// The textures it reads.
-    pub fn textures(&self) -> impl Iterator<Item = &TextureRef> {
-        [
-            &self.base_color_texture,
-            &self.metallic_roughness_texture,
-            &self.normal_texture,
-            &self.emissive_texture,
-        ]
-        .into_iter()
-        .flatten()
-    }
 }
 
 /// Extensions a file may require that snell reads (or may ignore without changing the
@@ -328,43 +193,11 @@ fn parse_with(bytes: &[u8], path: &Path, geometry: bool) -> Result<GltfScene, Me
                 matrix: world,
             });
         }
-        if let Some(c) = node.camera() {
-            use gltf::camera::Projection as P;
-            let (yfov, ymag) = match c.projection() {
-                P::Perspective(p) => (Some(p.yfov()), 0.0),
-                P::Orthographic(o) => (None, o.ymag()),
-            };
-            out.cameras.push(GltfCamera {
-                name: c
-                    .name()
-                    .or(node.name())
-                    .map_or_else(|| format!("camera {}", c.index()), str::to_string),
-                yfov,
-                ymag,
-                matrix: world,
-            });
+        if let Some(c) = placed::camera(&node, world) {
+            out.cameras.push(c);
         }
-        if let Some(l) = node.light() {
-            use gltf::khr_lights_punctual::Kind as K;
-            out.lights.push(GltfLight {
-                name: l
-                    .name()
-                    .map_or_else(|| format!("light {}", l.index()), str::to_string),
-                kind: match l.kind() {
-                    K::Point => GltfLightKind::Point,
-                    K::Directional => GltfLightKind::Directional,
-                    K::Spot {
-                        inner_cone_angle,
-                        outer_cone_angle,
-                    } => GltfLightKind::Spot {
-                        inner: inner_cone_angle,
-                        outer: outer_cone_angle,
-                    },
-                },
-                color: l.color(),
-                intensity: l.intensity(),
-                matrix: world,
-            });
+        if let Some(l) = placed::light(&node, world) {
+            out.lights.push(l);
         }
         stack.extend(node.children().map(|c| (c, world, depth + 1)));
     }
@@ -375,7 +208,7 @@ fn parse_with(bytes: &[u8], path: &Path, geometry: bool) -> Result<GltfScene, Me
     if !geometry {
         return Ok(out);
     }
-    out.materials = document.materials().map(|m| material(&m)).collect();
+    out.materials = document.materials().map(|m| material::read(&m)).collect();
     // The images the used materials show, decoded.
     let mut wanted = vec![false; document.images().len()];
     for (m, used) in out.materials.iter().zip(&used_materials) {
@@ -451,6 +284,22 @@ fn check_before_validation(root: &gltf::json::Root) -> Result<(), String> {
     for uri in uris {
         if !uri.starts_with("data:") && decode_uri(uri).is_none() {
             return Err(format!("the uri `{uri}` does not decode to UTF-8"));
+        }
+    }
+    // A camera's type must name a projection it has: the crate's validation only asks for
+    // one of the two, and its reader unwraps the one the type names.
+    for (i, c) in root.cameras.iter().enumerate() {
+        use gltf::json::camera::Type;
+        use gltf::json::validation::Checked;
+        let (has, name) = match c.type_ {
+            Checked::Valid(Type::Perspective) => (c.perspective.is_some(), "perspective"),
+            Checked::Valid(Type::Orthographic) => (c.orthographic.is_some(), "orthographic"),
+            Checked::Invalid => (true, ""),
+        };
+        if !has {
+            return Err(format!(
+                "camera {i} is of type {name} but has no `{name}` projection"
+            ));
         }
     }
     let n = root.accessors.len();
@@ -711,82 +560,6 @@ fn check_layouts(prim: &gltf::Primitive) -> Result<(), String> {
         ));
     }
     Ok(())
-}
-
-fn material(m: &gltf::Material) -> PbrMaterial {
-    let pbr = m.pbr_metallic_roughness();
-    let strength = m.emissive_strength().unwrap_or(1.0);
-    let info = |i: gltf::texture::Info| {
-        let t = i.texture_transform();
-        TextureRef {
-            image: i.texture().source().index(),
-            texcoord: t
-                .as_ref()
-                .and_then(|t| t.tex_coord())
-                .unwrap_or(i.tex_coord()),
-            transform: t.map(|t| uv_transform(t.offset(), t.rotation(), t.scale())),
-        }
-    };
-    let normal = m.normal_texture();
-    PbrMaterial {
-        name: m.name().map_or_else(
-            || format!("material {}", m.index().unwrap_or(0)),
-            str::to_string,
-        ),
-        base_color: pbr.base_color_factor(),
-        base_color_texture: pbr.base_color_texture().map(info),
-        metallic: pbr.metallic_factor(),
-        roughness: pbr.roughness_factor(),
-        metallic_roughness_texture: pbr.metallic_roughness_texture().map(info),
-        normal_scale: normal.as_ref().map_or(1.0, |n| n.scale()),
-        normal_texture: normal.map(|n| TextureRef {
-            image: n.texture().source().index(),
-            texcoord: n.tex_coord(),
-            transform: json_transform(n.extension_value("KHR_texture_transform")),
-        }),
-        occlusion: m.occlusion_texture().is_some(),
-        emissive: m.emissive_factor().map(|e| e * strength),
-        emissive_texture: m.emissive_texture().map(info),
-        transmission: m.transmission().map_or(0.0, |t| t.transmission_factor()),
-        ior: m.ior().unwrap_or(1.5),
-        double_sided: m.double_sided(),
-        alpha: match m.alpha_mode() {
-            gltf::material::AlphaMode::Opaque => Alpha::Opaque,
-            gltf::material::AlphaMode::Mask => Alpha::Mask(m.alpha_cutoff().unwrap_or(0.5)),
-            gltf::material::AlphaMode::Blend => Alpha::Blend,
-        },
-    }
-}
-
-/// KHR_texture_transform's offset, rotation (radians, counter-clockwise) and scale as a
-/// matrix on uv: scale, then rotate, then offset, as the extension composes them.
-pub fn uv_transform(offset: [f32; 2], rotation: f32, scale: [f32; 2]) -> [[f32; 2]; 3] {
-    let (s, c) = rotation.sin_cos();
-    // u' = c su u + s sv v + ou;  v' = -s su u + c sv v + ov.
-    [
-        [c * scale[0], -s * scale[0]],
-        [s * scale[1], c * scale[1]],
-        offset,
-    ]
-}
-
-/// KHR_texture_transform read from a texture's extension JSON (the `gltf` crate reads it
-/// only for plain texture references, not a normal map's).
-fn json_transform(v: Option<&gltf::json::Value>) -> Option<[[f32; 2]; 3]> {
-    let v = v?;
-    let pair = |key: &str, default: [f32; 2]| {
-        v.get(key)
-            .and_then(|a| a.as_array())
-            .filter(|a| a.len() == 2)
-            .and_then(|a| Some([a[0].as_f64()? as f32, a[1].as_f64()? as f32]))
-            .unwrap_or(default)
-    };
-    let rotation = v.get("rotation").and_then(|r| r.as_f64()).unwrap_or(0.0) as f32;
-    Some(uv_transform(
-        pair("offset", [0.0, 0.0]),
-        rotation,
-        pair("scale", [1.0, 1.0]),
-    ))
 }
 
 /// A decoded glTF image as an `image` crate image (8- and 16-bit, and float).
