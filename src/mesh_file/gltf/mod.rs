@@ -368,15 +368,16 @@ fn check_views(doc: &gltf::Document, buffers: &[gltf::buffer::Data]) -> Result<(
                 a.index()
             ));
         }
+        // glTF asks for at least one element, and the crate's readers count on it.
+        if a.count() == 0 {
+            return Err(format!(
+                "accessor {} has no elements (glTF asks for a count of at least 1)",
+                a.index()
+            ));
+        }
         let Some(view) = a.view() else {
-            if a.count() == 0 {
-                continue;
-            }
             return Err(format!("accessor {} has no buffer view", a.index()));
         };
-        if a.count() == 0 {
-            continue;
-        }
         let stride = view.stride().unwrap_or(a.size());
         let end = (a.count() - 1)
             .checked_mul(stride)

@@ -38,6 +38,8 @@ The broken files (each with the same two-cubes.bin unless said):
   missing-buffer.gltf the buffer's file does not exist
   needs-draco.gltf    requires KHR_draco_mesh_compression
   not-json.gltf       not JSON at all
+  no-elements.gltf    the TEXCOORD_0 accessor has a count of 0 (glTF asks for 1 or more; the
+                      gltf crate's readers underflow on it)
   camera-type.gltf    lit.gltf with a camera of type orthographic that holds only a
                       perspective projection (the gltf crate's reader unwraps the one the
                       type names; uses cutout.bin)
@@ -360,6 +362,9 @@ def main():
     uv = json.loads(json.dumps(doc))
     uv['meshes'][0]['primitives'][1]['attributes']['TEXCOORD_0'] = 0
     write('bad-uv-type.gltf', uv)
+    empty = json.loads(json.dumps(doc))
+    empty['accessors'][2]['count'] = 0
+    write('no-elements.gltf', empty)
     missing = json.loads(json.dumps(doc))
     missing['buffers'][0]['uri'] = 'gone.bin'
     write('missing-buffer.gltf', missing)
