@@ -3,9 +3,11 @@
 //! the finished picture ([`Image`]).
 
 pub mod filter;
+mod region;
 pub mod tiles;
 
 pub use filter::{Filter, FilterKind};
+pub use region::Region;
 pub use tiles::{TILE, TileGrid};
 
 use crate::math::{Color, luminance};
@@ -140,6 +142,16 @@ impl<P> Film<P> {
         &self.pixels
     }
 
+    /// The pixels of `region` (every pixel where `None`), in no order a caller may rely on.
+    pub fn pixels_in(&self, region: Option<Region>) -> Box<dyn Iterator<Item = &P> + '_> {
+        match region {
+            None => Box::new(self.pixels.iter()),
+            Some(r) => {
+                Box::new((r.y0..r.y1).flat_map(move |y| (r.x0..r.x1).map(move |x| self.get(x, y))))
+            }
+        }
+    }
+
     /// Tile `i`'s pixels, row by row.
     pub fn tile(&self, i: u32) -> &[P] {
         let start = self.grid.start(i);
@@ -209,8 +221,13 @@ impl Film<FilmPixel> {
     /// pixel's expected absolute error is `sqrt(2 / pi)` times its standard error, as for a
     /// normal error. `None` while a pixel has fewer than two samples or the picture is black.
     pub fn estimated_error(&self) -> Option<f32> {
+        self.estimated_error_in(None)
+    }
+
+    /// [`Film::estimated_error`] of the pixels of `region` (all where `None`).
+    pub fn estimated_error_in(&self, region: Option<Region>) -> Option<f32> {
         let (mut err, mut sum) = (0.0f64, 0.0f64);
-        for p in &self.pixels {
+        for p in self.pixels_in(region) {
             err += (p.variance_of_mean()? as f64).sqrt();
             sum += luminance(p.value()) as f64;
         }

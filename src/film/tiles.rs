@@ -25,6 +25,16 @@ impl TileGrid {
         self.tiles_x() * self.height.div_ceil(TILE)
     }
 
+    /// How many tiles share a pixel with `region` (all of them where `None`).
+    pub fn tiles_in(&self, region: Option<super::Region>) -> u32 {
+        match region {
+            None => self.count(),
+            Some(r) => (0..self.count())
+                .filter(|&i| r.overlaps(self.rect(i)))
+                .count() as u32,
+        }
+    }
+
     /// Tile `i`'s pixels: columns `x0..x1`, rows `y0..y1`, as `(x0, y0, x1, y1)`.
     pub fn rect(&self, i: u32) -> (u32, u32, u32, u32) {
         let tx = self.tiles_x();

@@ -121,6 +121,7 @@ pub fn render_aovs(scene: &Scene, threads: Option<usize>) -> Result<AovBuffers, 
         threads,
         progress: &|_| {},
         cancel: None,
+        region: None,
     };
     for_each_tile(
         &mut film,

@@ -203,6 +203,50 @@ pub fn encode_exr_layers(
     Ok(bytes)
 }
 
+/// An OpenEXR file of `img`, a region of a `full` (width, height) image whose top left
+/// pixel is `at`: the region's pixels in its data window, the whole image's rectangle as its
+/// display window, so that viewers and `snell merge` put it in its place. 32-bit float,
+/// lossless.
+pub fn encode_exr_region(
+    img: &Image,
+    at: (u32, u32),
+    full: (u32, u32),
+    path: &Path,
+) -> Result<Vec<u8>, OutputError> {
+    use exr::prelude::*;
+    let channel = |name: &str, k: usize| {
+        AnyChannel::new(
+            name,
+            FlatSamples::F32(img.pixels.iter().map(|c| c[k]).collect()),
+        )
+    };
+    let mut layer = Layer::new(
+        (img.width as usize, img.height as usize),
+        LayerAttributes::default(),
+        Encoding::FAST_LOSSLESS,
+        AnyChannels::sort(SmallVec::from_vec(vec![
+            channel("R", 0),
+            channel("G", 1),
+            channel("B", 2),
+        ])),
+    );
+    layer.attributes.layer_position = Vec2(at.0 as i32, at.1 as i32);
+    let display = IntegerBounds::new(Vec2(0, 0), Vec2(full.0 as usize, full.1 as usize));
+    let image = exr::image::Image::new(ImageAttributes::new(display), layer);
+    let mut bytes = vec![];
+    image
+        .write()
+        .to_buffered(std::io::Cursor::new(&mut bytes))
+        .map_err(|e| OutputError::Encode {
+            path: path.to_path_buf(),
+            source: image::ImageError::Encoding(image::error::EncodingError::new(
+                image::error::ImageFormatHint::Exact(image::ImageFormat::OpenExr),
+                e,
+            )),
+        })?;
+    Ok(bytes)
+}
+
 /// An image file reserved before rendering: its format checked and its temporary file
 /// created up front (see [`atomic::PendingFile`]), so a bad or unwritable destination fails
 /// before the work starts. Dropping it without committing leaves any old image alone.
@@ -251,6 +295,27 @@ impl PendingOutput {
     /// [`PendingOutput::commit`] with a PNG's values after `tone` (an EXR stays linear).
     pub fn commit_toned(self, img: &Image, tone: &tone::Tone) -> Result<(), OutputError> {
         let bytes = encode_toned(img, self.format, self.path(), tone)?;
+        self.commit_bytes(&bytes)
+    }
+
+    /// Writes the `region` of `img` (a whole render's image, only the region rendered): a
+    /// PNG of the region alone, tone mapped; an EXR of it at its place in the whole image.
+    pub fn commit_region(
+        self,
+        img: &Image,
+        region: crate::film::Region,
+        tone: &tone::Tone,
+    ) -> Result<(), OutputError> {
+        let part = region.crop(img);
+        let bytes = match self.format {
+            OutputFormat::Exr => encode_exr_region(
+                &part,
+                (region.x0, region.y0),
+                (img.width, img.height),
+                self.path(),
+            )?,
+            _ => encode_toned(&part, self.format, self.path(), tone)?,
+        };
         self.commit_bytes(&bytes)
     }
 

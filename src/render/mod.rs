@@ -17,6 +17,7 @@ mod pixel;
 pub mod progressive;
 mod tiles;
 
+pub use crate::film::Region;
 pub use crate::film::TILE;
 pub use pass::{PassError, PassStats, render_pass, render_pass_to};
 pub use pixel::{
@@ -147,6 +148,9 @@ pub struct RenderOptions<'a> {
     pub progress: &'a (dyn Fn(u64) + Sync),
     /// Set to stop: tiles not yet started are skipped, tiles under way finish.
     pub cancel: Option<&'a AtomicBool>,
+    /// Only the tiles that share a pixel with this region are rendered, if given (the
+    /// others are left as they were).
+    pub region: Option<Region>,
 }
 
 /// Renders `scene` with its settings. `threads` = `None` uses every core. `progress` is
@@ -161,6 +165,7 @@ pub fn render(
         threads,
         progress,
         cancel: None,
+        region: None,
     };
     render_with(scene, integrator, &options, None)
 }
@@ -227,7 +232,8 @@ pub fn render_with(
         rays: done.rays,
         bad_samples: done.bad_samples,
         tiles_done: (earlier.len() + done.tiles) as u32,
-        tiles_total: grid.count(),
+        // A region's: the tiles that share a pixel with it.
+        tiles_total: grid.tiles_in(options.region),
         pixels_rendered: done.pixels,
     })
 }

@@ -148,6 +148,7 @@ pub(super) mod tests {
             threads: Some(threads),
             progress: &|_| {},
             cancel: None,
+            region: None,
         }
     }
 
@@ -195,6 +196,7 @@ pub(super) mod tests {
             threads: Some(1),
             progress: &progress,
             cancel: Some(&stop),
+            region: None,
         };
         let stats = render_pass_to(&scene, &Path, &mut film, 7, &cancelling).unwrap();
         assert_eq!(stats.tiles_done, 1);

@@ -71,7 +71,12 @@ pub struct Progressive {
 
 /// The fewest samples any pixel of `film` has.
 pub fn film_samples(film: &Film) -> u32 {
-    film.pixels().iter().map(|p| p.samples).min().unwrap_or(0)
+    film_samples_in(film, None)
+}
+
+/// [`film_samples`] of the pixels of `region` (all where `None`).
+pub fn film_samples_in(film: &Film, region: Option<crate::film::Region>) -> u32 {
+    film.pixels_in(region).map(|p| p.samples).min().unwrap_or(0)
 }
 
 /// Where the pass from `done` samples ends: twice as many (1 first), no further than `spp`,
@@ -111,7 +116,7 @@ pub fn render_progressive(
     let mut per_sample = None;
     let cancelled = || options.cancel.is_some_and(|c| c.load(Ordering::SeqCst));
     loop {
-        let done = film_samples(film);
+        let done = film_samples_in(film, options.region);
         let elapsed = start.elapsed();
         out.ended = if done >= until.spp {
             Some(Ended::Complete)
@@ -142,12 +147,12 @@ pub fn render_progressive(
         out.samples_added += after - before;
         out.rays += stats.rays;
         out.bad_samples.add(stats.bad_samples);
-        if stats.tiles_done == film.grid().count() {
+        if stats.tiles_done == film.grid().tiles_in(options.region) {
             per_sample = Some(t0.elapsed() / (end - done));
         }
         event(
             PassEvent::Done {
-                samples: film_samples(film),
+                samples: film_samples_in(film, options.region),
                 elapsed: start.elapsed(),
             },
             film,
@@ -237,6 +242,7 @@ mod tests {
             threads: Some(1),
             progress: &progress,
             cancel: Some(&stop),
+            region: None,
         };
         let mut film = Film::new(24, 20);
         let p = render_progressive(&scene, &Path, &mut film, until, &cancelling, &mut |e, _| {

@@ -25,6 +25,7 @@ where
 {
     let pool = super::thread_pool(options.threads)?;
     let grid = film.grid();
+    let skip = |i: u32| skip(i) || options.region.is_some_and(|r| !r.overlaps(grid.rect(i)));
     let n = grid.count();
     let done = AtomicU64::new(
         (0..n)
@@ -125,6 +126,7 @@ mod tests {
             threads: Some(2),
             progress: &progress,
             cancel: None,
+            region: None,
         };
         let tiles = for_each_tile(
             &mut film,
@@ -160,6 +162,7 @@ mod tests {
         let stop = AtomicBool::new(true);
         let options = RenderOptions {
             cancel: Some(&stop),
+            region: None,
             ..options
         };
         let before = film.clone();

@@ -16,6 +16,7 @@ mod meshes;
 mod optics;
 mod path;
 mod properties;
+mod region;
 mod renders;
 mod robustness;
 mod schema;

@@ -363,6 +363,7 @@ fn the_estimated_error_is_the_pictures_error() {
         threads: Some(2),
         progress: &|_| {},
         cancel: None,
+        region: None,
     };
     let mut last = f64::INFINITY;
     for spp in [16, 64] {

@@ -168,6 +168,11 @@ pub(crate) struct RenderArgs {
     /// (seconds). With --spp 65536 the time alone decides.
     #[arg(long, allow_hyphen_values = true, value_parser = parse_duration, value_name = "TIME")]
     pub(crate) time: Option<std::time::Duration>,
+    /// Render only the pixels of columns X0..X1 and rows Y0..Y1 (ends exclusive, (0, 0) the
+    /// top left): the same pixels, bit for bit, as that part of the whole render. A PNG holds
+    /// the region alone; an EXR holds it at its place in the whole image (its data window).
+    #[arg(long, value_parser = parse_region, value_name = "X0,Y0,X1,Y1")]
+    pub(crate) region: Option<snell::render::Region>,
     /// Print nothing but errors.
     #[arg(short, long)]
     pub(crate) quiet: bool,
@@ -320,4 +325,9 @@ fn positive<T: std::str::FromStr + PartialEq + Default>(s: &str) -> Result<T, St
             "`{s}` is not a positive whole number (1, 2, 3 ...)"
         )),
     }
+}
+
+/// `--region X0,Y0,X1,Y1`.
+fn parse_region(s: &str) -> Result<snell::render::Region, String> {
+    snell::render::Region::parse(s)
 }

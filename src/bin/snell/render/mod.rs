@@ -97,6 +97,22 @@ pub(crate) fn render(args: RenderArgs) -> ExitCode {
             return ExitCode::from(1);
         }
     };
+    if let Some(r) = args.region {
+        if let Err(e) = r.check(scene.settings.width, scene.settings.height) {
+            return usage_error(&e, None);
+        }
+        let other = [
+            (args.checkpoint.is_some(), "--checkpoint"),
+            (args.resume.is_some(), "--resume"),
+            (!args.aov.is_empty(), "--aov"),
+        ];
+        if let Some((_, flag)) = other.iter().find(|(given, _)| *given) {
+            return usage_error(
+                &format!("--region cannot be combined with {flag} yet"),
+                Some("render the region without it"),
+            );
+        }
+    }
     let random = snell::integrator::chosen(scene.settings.integrator.kind).uses_sampler();
     let mut aovs: Vec<Aov> = vec![];
     for list in &args.aov {
@@ -171,6 +187,7 @@ pub(crate) fn render(args: RenderArgs) -> ExitCode {
         every: std::time::Duration::from_secs_f64(args.checkpoint_every),
         saver: &saver,
         keep_film: aovs.contains(&Aov::Variance),
+        region: args.region,
     };
     // The path tracer renders in passes, unless it resumes a checkpoint of tiles (an
     // earlier snell's).
@@ -205,7 +222,11 @@ pub(crate) fn render(args: RenderArgs) -> ExitCode {
             out.make_partial();
         }
     }
-    let written = if aovs.is_empty() {
+    let written = if let Some(r) = args.region {
+        pending
+            .commit_region(&outcome.image, r, &scene.settings.tone)
+            .map_err(|e| e.to_string())
+    } else if aovs.is_empty() {
         pending
             .commit_toned(&outcome.image, &scene.settings.tone)
             .map_err(|e| e.to_string())
@@ -247,6 +268,10 @@ pub(crate) fn render(args: RenderArgs) -> ExitCode {
         let _ = std::fs::remove_file(path);
     }
     if !args.quiet {
+        let (w, h, pixels) = match args.region {
+            Some(r) => (r.width(), r.height(), r.pixels()),
+            None => (w, h, pixels),
+        };
         let samples = pixels * outcome.spp as u64;
         // A resumed render's rate counts only the samples rendered in this run.
         let resumed_part = if outcome.samples < samples {
@@ -372,6 +397,8 @@ pub(crate) struct Run<'a> {
     pub(crate) saver: &'a Saver<'a>,
     /// Whether the variance view wants the film of sums kept.
     pub(crate) keep_film: bool,
+    /// The pixels to render, where not all.
+    pub(crate) region: Option<snell::render::Region>,
 }
 
 /// Every sample of each pixel at once, tile by tile (Whitted, whose strata are fixed by the
@@ -407,6 +434,7 @@ fn render_tiles(
             threads: run.threads,
             progress: &|n| run.bar.set_position(n),
             cancel: Some(&STOP),
+            region: run.region,
         };
         let r = snell::render::render_with(run.scene, run.integrator, &options, Some(&store));
         finished.store(true, Ordering::SeqCst);

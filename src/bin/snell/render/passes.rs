@@ -5,7 +5,7 @@
 use super::{Outcome, Run, STOP};
 use snell::film::Film;
 use snell::render::RenderOptions;
-use snell::render::progressive::{Ended, PassEvent, Until, film_samples, render_progressive};
+use snell::render::progressive::{Ended, PassEvent, Until, film_samples_in, render_progressive};
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::time::{Duration, Instant};
 
@@ -30,6 +30,7 @@ pub(crate) fn render_passes(
         threads: run.threads,
         progress: &progress,
         cancel: Some(&STOP),
+        region: run.region,
     };
     // The picture's estimated error after the last pass, shown on the bar (worked out only
     // where the bar is seen: it reads the whole film).
@@ -54,7 +55,7 @@ pub(crate) fn render_passes(
             }
             PassEvent::Done { .. } => {
                 if !run.bar.is_hidden() {
-                    error = film.estimated_error();
+                    error = film.estimated_error_in(run.region);
                 }
                 if let Some(path) = run.checkpoint
                     && last_save.elapsed() >= run.every
@@ -80,10 +81,14 @@ pub(crate) fn render_passes(
             path.display()
         );
     }
-    let spp = film_samples(&film);
-    let most = film.pixels().iter().map(|p| p.samples).max().unwrap_or(0);
+    let spp = film_samples_in(&film, run.region);
+    let most = film
+        .pixels_in(run.region)
+        .map(|p| p.samples)
+        .max()
+        .unwrap_or(0);
     let ended = done.ended.unwrap_or(Ended::Cancelled);
-    let error = film.estimated_error();
+    let error = film.estimated_error_in(run.region);
     let image = film.image();
     // The film goes to the checkpoint of an interrupted render, to the variance view, or
     // (copied) to both.

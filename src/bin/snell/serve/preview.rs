@@ -366,6 +366,7 @@ fn render(shared: &Shared) -> Result<(), String> {
         threads: None,
         progress: &|_| {},
         cancel: Some(&shared.cancel),
+        region: None,
     };
     let mut rays = 0u64;
     let target = scene.settings.spp;

@@ -1,0 +1,136 @@
+//! `snell render --region`: a region's pixels are the same, bit for bit, as that part of
+//! the whole render, under both integrators; a PNG holds the region alone, an EXR holds it
+//! at its place in the whole image (its data window).
+
+use super::{repo, scratch};
+use std::path::Path;
+use std::process::{Command, Output};
+
+fn snell(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_snell"))
+        .args(args)
+        .output()
+        .expect("snell runs")
+}
+
+/// An EXR's pixels (R, G, B of each, row by row), its size and where its data window
+/// starts in the whole image.
+fn read_exr(path: &Path) -> (Vec<f32>, (usize, usize), (i32, i32)) {
+    use exr::prelude::*;
+    let image = read_first_flat_layer_from_file(path).unwrap();
+    let layer = image.layer_data;
+    let size = (layer.size.0, layer.size.1);
+    let at = (
+        layer.attributes.layer_position.0,
+        layer.attributes.layer_position.1,
+    );
+    let channel = |name: &str| {
+        let c = layer
+            .channel_data
+            .list
+            .iter()
+            .find(|c| c.name == *name)
+            .unwrap();
+        c.sample_data.values_as_f32().collect::<Vec<f32>>()
+    };
+    let (r, g, b) = (channel("R"), channel("G"), channel("B"));
+    let pixels = (0..r.len()).flat_map(|i| [r[i], g[i], b[i]]).collect();
+    (pixels, size, at)
+}
+
+#[test]
+fn a_region_is_the_same_pixels_as_that_part_of_the_whole_render() {
+    let dir = scratch("region");
+    // The seed scene (Whitted, all samples at once) and the Cornell box (the path tracer
+    // in passes), at a size whose region cuts across tiles.
+    for (scene, name) in [
+        ("scenes/seed.toml", "seed"),
+        ("scenes/cornell.toml", "cornell"),
+    ] {
+        let scene = repo(scene).to_string_lossy().into_owned();
+        let size = ["--width", "45", "--height", "37", "--spp", "4", "--quiet"];
+        let whole = dir.join(format!("{name}-whole.exr"));
+        let part = dir.join(format!("{name}-part.exr"));
+        let mut args = vec!["render", &scene, "-o"];
+        let w = whole.to_string_lossy().into_owned();
+        let p = part.to_string_lossy().into_owned();
+        let o = snell(&[&args[..], &[&w], &size].concat());
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        args.push(&p);
+        let o = snell(&[&args[..], &size, &["--region", "7,5,30,21"]].concat());
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let (all, (aw, ah), at) = read_exr(&whole);
+        assert_eq!(((aw, ah), at), ((45, 37), (0, 0)));
+        let (region, size_of, at) = read_exr(&part);
+        assert_eq!((size_of, at), ((23, 16), (7, 5)), "{name}");
+        for y in 0..16 {
+            for x in 0..23 {
+                for c in 0..3 {
+                    let a = all[((y + 5) * 45 + x + 7) * 3 + c];
+                    let b = region[(y * 23 + x) * 3 + c];
+                    assert_eq!(
+                        a.to_bits(),
+                        b.to_bits(),
+                        "{name}: pixel ({}, {})",
+                        x + 7,
+                        y + 5
+                    );
+                }
+            }
+        }
+        // A PNG holds the region alone: the whole PNG's pixels there.
+        let (wp, pp) = (
+            dir.join(format!("{name}.png")),
+            dir.join(format!("{name}-part.png")),
+        );
+        let (wp_s, pp_s) = (wp.to_string_lossy(), pp.to_string_lossy());
+        assert!(
+            snell(&[&["render", &scene, "-o", &wp_s][..], &size].concat())
+                .status
+                .success()
+        );
+        let o = snell(
+            &[
+                &["render", &scene, "-o", &pp_s][..],
+                &size,
+                &["--region", "7,5,30,21"],
+            ]
+            .concat(),
+        );
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let whole_png = image::open(&wp).unwrap().into_rgb8();
+        let part_png = image::open(&pp).unwrap().into_rgb8();
+        assert_eq!(part_png.dimensions(), (23, 16));
+        for (x, y, p) in part_png.enumerate_pixels() {
+            assert_eq!(p, whole_png.get_pixel(x + 7, y + 5), "{name}: ({x}, {y})");
+        }
+    }
+}
+
+#[test]
+fn bad_regions_are_refused_before_rendering() {
+    let dir = scratch("region-bad");
+    let scene = repo("scenes/seed.toml").to_string_lossy().into_owned();
+    let out = dir.join("x.png").to_string_lossy().into_owned();
+    let base = [
+        "render", &scene, "-o", &out, "--width", "40", "--height", "30",
+    ];
+    for (extra, message) in [
+        (
+            &["--region", "0,0,41,30"][..],
+            "reaches past the 40 x 30 image",
+        ),
+        (&["--region", "5,5,5,9"][..], "is empty"),
+        (&["--region", "1,2,3"][..], "X0,Y0,X1,Y1"),
+        (
+            &["--region", "0,0,8,8", "--checkpoint", "c.snellcp"][..],
+            "--region cannot be combined with --checkpoint",
+        ),
+    ] {
+        let o = snell(&[&base[..], extra].concat());
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{extra:?}: {err}");
+        assert!(err.contains(message), "{extra:?}: {err}");
+        assert!(!Path::new(&out).exists());
+    }
+}
