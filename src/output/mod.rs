@@ -3,6 +3,7 @@
 //! so a failed render never leaves a broken image or destroys an old one.
 
 pub mod atomic;
+pub mod merge;
 pub mod tone;
 
 use crate::film::Image;
@@ -211,6 +212,7 @@ pub fn encode_exr_region(
     img: &Image,
     at: (u32, u32),
     full: (u32, u32),
+    meta: &[(&str, String)],
     path: &Path,
 ) -> Result<Vec<u8>, OutputError> {
     use exr::prelude::*;
@@ -232,7 +234,13 @@ pub fn encode_exr_region(
     );
     layer.attributes.layer_position = Vec2(at.0 as i32, at.1 as i32);
     let display = IntegerBounds::new(Vec2(0, 0), Vec2(full.0 as usize, full.1 as usize));
-    let image = exr::image::Image::new(ImageAttributes::new(display), layer);
+    let mut image = exr::image::Image::new(ImageAttributes::new(display), layer);
+    for (key, value) in meta {
+        image.attributes.other.insert(
+            Text::from(*key),
+            AttributeValue::Text(Text::from(value.as_str())),
+        );
+    }
     let mut bytes = vec![];
     image
         .write()
@@ -299,12 +307,14 @@ impl PendingOutput {
     }
 
     /// Writes the `region` of `img` (a whole render's image, only the region rendered): a
-    /// PNG of the region alone, tone mapped; an EXR of it at its place in the whole image.
+    /// PNG of the region alone, tone mapped; an EXR of it at its place in the whole image,
+    /// with the render's `fingerprint` and tone for `snell merge`.
     pub fn commit_region(
         self,
         img: &Image,
         region: crate::film::Region,
         tone: &tone::Tone,
+        fingerprint: u64,
     ) -> Result<(), OutputError> {
         let part = region.crop(img);
         let bytes = match self.format {
@@ -312,6 +322,10 @@ impl PendingOutput {
                 &part,
                 (region.x0, region.y0),
                 (img.width, img.height),
+                &[
+                    (merge::FINGERPRINT, format!("{fingerprint:016x}")),
+                    (merge::TONE, merge::tone_text(tone)),
+                ],
                 self.path(),
             )?,
             _ => encode_toned(&part, self.format, self.path(), tone)?,

@@ -134,3 +134,89 @@ fn bad_regions_are_refused_before_rendering() {
         assert!(!Path::new(&out).exists());
     }
 }
+
+/// Renders `scene` at 45 x 37, 4 spp, with `extra` flags, to `out`.
+fn render_to(scene: &str, out: &Path, extra: &[&str]) {
+    let out = out.to_string_lossy();
+    let o = snell(
+        &[
+            &[
+                "render", scene, "-o", &out, "--width", "45", "--height", "37", "--spp", "4",
+                "--quiet",
+            ][..],
+            extra,
+        ]
+        .concat(),
+    );
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+}
+
+#[test]
+fn merged_regions_are_the_bytes_of_one_render() {
+    let dir = scratch("merge");
+    for (scene, name) in [
+        ("scenes/seed.toml", "seed"),
+        ("scenes/cornell.toml", "cornell"),
+    ] {
+        let scene = repo(scene).to_string_lossy().into_owned();
+        let quarters = ["0,0,20,16", "20,0,45,16", "0,16,20,37", "20,16,45,37"];
+        let mut parts = vec![];
+        for (k, q) in quarters.iter().enumerate() {
+            let p = dir.join(format!("{name}-{k}.exr"));
+            render_to(&scene, &p, &["--region", q]);
+            parts.push(p.to_string_lossy().into_owned());
+        }
+        for ext in ["png", "exr"] {
+            let whole = dir.join(format!("{name}-whole.{ext}"));
+            render_to(&scene, &whole, &[]);
+            let merged = dir.join(format!("{name}-merged.{ext}"));
+            let m = merged.to_string_lossy().into_owned();
+            // Any order.
+            let list: Vec<&str> = parts.iter().rev().map(String::as_str).collect();
+            let o = snell(&[&["merge", "-o", &m][..], &list].concat());
+            assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+            assert_eq!(
+                std::fs::read(&whole).unwrap(),
+                std::fs::read(&merged).unwrap(),
+                "{name}: the merged {ext} differs from one render's"
+            );
+        }
+        // Refused: a quarter missing, a quarter twice, a quarter of another render, and a
+        // whole render's EXR (no fingerprint).
+        let other = dir.join(format!("{name}-other.exr"));
+        render_to(&scene, &other, &["--region", quarters[3], "--seed", "9"]);
+        let plain = dir
+            .join(format!("{name}-whole.exr"))
+            .to_string_lossy()
+            .into_owned();
+        let out = dir.join("refused.png").to_string_lossy().into_owned();
+        let o_s = other.to_string_lossy().into_owned();
+        let png = dir
+            .join(format!("{name}-whole.png"))
+            .to_string_lossy()
+            .into_owned();
+        for (list, message) in [
+            (
+                vec![&parts[0], &parts[1], &parts[2]],
+                "uncovered, the first at (20, 16)",
+            ),
+            (
+                vec![&parts[0], &parts[1], &parts[2], &parts[3], &parts[1]],
+                "overlap",
+            ),
+            (
+                vec![&parts[0], &parts[1], &parts[2], &o_s],
+                "are of different renders",
+            ),
+            (vec![&parts[0], &plain], "no snell fingerprint"),
+            (vec![&parts[0], &png], "not an EXR snell can read"),
+        ] {
+            let list: Vec<&str> = list.iter().map(|s| s.as_str()).collect();
+            let o = snell(&[&["merge", "-o", &out][..], &list].concat());
+            let err = String::from_utf8_lossy(&o.stderr);
+            assert_eq!(o.status.code(), Some(2), "{err}");
+            assert!(err.contains(message), "{message}: {err}");
+            assert!(!Path::new(&out).exists());
+        }
+    }
+}

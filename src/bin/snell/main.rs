@@ -26,6 +26,7 @@ macro_rules! outln {
 
 mod args;
 mod explain;
+mod merge;
 mod render;
 mod serve;
 
@@ -87,6 +88,12 @@ enum Command {
     /// writes the scene file: a camera moved on the page is copied from it as a [camera]
     /// table to paste.
     Serve(ServeArgs),
+    /// Put the region files of one render (`snell render --region ... -o PART.exr`) back
+    /// into the whole image: the same bytes as one render of it, as PNG or EXR.
+    ///
+    /// Refuses files of different renders (scene, size, samples, seed or integrator), files
+    /// that overlap, and sets that leave pixels uncovered.
+    Merge(merge::MergeArgs),
     /// Print the scene format's JSON Schema, for editors: `snell schema > snell.schema.json`.
     ///
     /// With it, editors complete keys and flag mistakes in scene files as one types;
@@ -112,6 +119,7 @@ fn main() -> ExitCode {
         },
         Command::Explain(args) => explain::explain(args),
         Command::Serve(args) => serve::serve(args),
+        Command::Merge(args) => merge::merge_command(args),
         Command::Schema => schema(),
     }
 }

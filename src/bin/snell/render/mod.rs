@@ -224,7 +224,7 @@ pub(crate) fn render(args: RenderArgs) -> ExitCode {
     }
     let written = if let Some(r) = args.region {
         pending
-            .commit_region(&outcome.image, r, &scene.settings.tone)
+            .commit_region(&outcome.image, r, &scene.settings.tone, fingerprint)
             .map_err(|e| e.to_string())
     } else if aovs.is_empty() {
         pending
