@@ -35,6 +35,14 @@ impl TileGrid {
         }
     }
 
+    /// Pixels in the tiles that share a pixel with `region` (all where `None`).
+    pub fn pixels_in(&self, region: Option<super::Region>) -> u64 {
+        (0..self.count())
+            .filter(|&i| region.is_none_or(|r| r.overlaps(self.rect(i))))
+            .map(|i| self.len(i) as u64)
+            .sum()
+    }
+
     /// Tile `i`'s pixels: columns `x0..x1`, rows `y0..y1`, as `(x0, y0, x1, y1)`.
     pub fn rect(&self, i: u32) -> (u32, u32, u32, u32) {
         let tx = self.tiles_x();

@@ -3,7 +3,9 @@
 //! render it belongs to (the scene file's bytes and the settings that change pixels) and
 //! the tone a PNG of it takes. A set is refused unless every file is of the same render
 //! and together they cover every pixel exactly once; then the image is the whole render's,
-//! bit for bit.
+//! bit for bit. The fingerprint holds the scene file's bytes and the settings, not the
+//! meshes and textures it reads: regions rendered while one of those changed are not told
+//! apart. An interrupted region carries no fingerprint, and is refused.
 
 use super::tone::{Tone, ToneCurve};
 use crate::film::{Image, Region};
@@ -45,8 +47,40 @@ fn parse_tone(s: &str) -> Option<Tone> {
     })
 }
 
-/// Reads a region file.
+/// The largest whole image a region file may be of (as many pixels as a render may have).
+fn max_pixels() -> u64 {
+    crate::scene::Limits::default().max_pixels
+}
+
+/// Reads a region file. Its header is checked first (one part, a whole image of at most
+/// as many pixels as a render may have, a few channels), so a hostile file cannot make the
+/// reader allocate without bound; a reader that panics on a corrupt file is an error too.
 pub fn read_region(path: &Path) -> Result<RegionFile, String> {
+    let shown = path.display();
+    let meta = exr::meta::MetaData::read_from_file(path, false)
+        .map_err(|e| format!("{shown}: not an EXR snell can read: {e}"))?;
+    let [header] = &meta.headers[..] else {
+        return Err(format!(
+            "{shown}: an EXR of {} parts; a region file has one",
+            meta.headers.len()
+        ));
+    };
+    let display = header.shared_attributes.display_window;
+    let full = display.size.0 as u64 * display.size.1 as u64;
+    if full > max_pixels() || header.channels.list.len() > 8 || header.deep {
+        return Err(format!(
+            "{shown}: an image of {} x {} with {} channels is not a region file snell writes",
+            display.size.0,
+            display.size.1,
+            header.channels.list.len()
+        ));
+    }
+    std::panic::catch_unwind(|| read_checked(path))
+        .unwrap_or_else(|_| Err(format!("{shown}: a corrupt EXR (its reader gave up)")))
+}
+
+/// [`read_region`] after its header is checked.
+fn read_checked(path: &Path) -> Result<RegionFile, String> {
     use exr::prelude::*;
     let shown = path.display();
     let image = read_first_flat_layer_from_file(path)
@@ -67,7 +101,9 @@ pub fn read_region(path: &Path) -> Result<RegionFile, String> {
     let fingerprint = text(FINGERPRINT)
         .and_then(|f| u64::from_str_radix(&f, 16).ok())
         .ok_or_else(|| {
-            format!("{shown}: no snell fingerprint: not written by `snell render --region`")
+            format!(
+                "{shown}: no snell fingerprint: not written by `snell render --region`, or an interrupted one"
+            )
         })?;
     let tone = text(TONE)
         .and_then(|t| parse_tone(&t))
@@ -106,6 +142,11 @@ pub fn read_region(path: &Path) -> Result<RegionFile, String> {
             .ok_or_else(|| format!("{shown}: no {name} channel"))
     };
     let (r, g, b) = (channel("R")?, channel("G")?, channel("B")?);
+    if [r.len(), g.len(), b.len()].iter().any(|&n| n != w * h) {
+        return Err(format!(
+            "{shown}: its channels do not hold {w} x {h} values each"
+        ));
+    }
     let region = Region {
         x0: x0 as u32,
         y0: y0 as u32,
@@ -132,8 +173,8 @@ pub fn merge(files: &[RegionFile]) -> Result<(Image, Tone), String> {
     let Some(first) = files.first() else {
         return Err("no region files to merge".into());
     };
-    for f in files {
-        let name = |g: &RegionFile| g.path.display().to_string();
+    let name = |g: &RegionFile| g.path.display().to_string();
+    for (k, f) in files.iter().enumerate() {
         if f.full != first.full {
             return Err(format!(
                 "{} is of a {} x {} image and {} of a {} x {} one",
@@ -161,37 +202,70 @@ pub fn merge(files: &[RegionFile]) -> Result<(Image, Tone), String> {
                 tone_text(&f.tone)
             ));
         }
-    }
-    let (w, h) = first.full;
-    // Which file covers each pixel, so that an overlap names both.
-    let mut owner: Vec<Option<usize>> = vec![None; w as usize * h as usize];
-    let mut image = Image::new(w, h);
-    for (k, f) in files.iter().enumerate() {
-        let r = f.region;
-        for y in r.y0..r.y1 {
-            for x in r.x0..r.x1 {
-                let i = (y * w + x) as usize;
-                if let Some(j) = owner[i] {
-                    return Err(format!(
-                        "{} and {} overlap (both hold pixel ({x}, {y}))",
-                        files[j].path.display(),
-                        f.path.display()
-                    ));
-                }
-                owner[i] = Some(k);
-                image.pixels[i] = f.image.pixels[((y - r.y0) * r.width() + (x - r.x0)) as usize];
-            }
+        // Overlaps, rectangle against rectangle (no per-pixel table: a whole image may
+        // be large).
+        if let Some(g) = files[..k].iter().find(|g| {
+            let r = g.region;
+            f.region.overlaps((r.x0, r.y0, r.x1, r.y1))
+        }) {
+            let (a, b) = (f.region, g.region);
+            let message = if f.path == g.path {
+                format!("{} is given twice", name(f))
+            } else {
+                format!(
+                    "{} and {} overlap (both hold pixel ({}, {}))",
+                    name(g),
+                    name(f),
+                    a.x0.max(b.x0),
+                    a.y0.max(b.y0)
+                )
+            };
+            return Err(message);
         }
     }
-    if let Some(i) = owner.iter().position(Option::is_none) {
-        let missing = owner.iter().filter(|o| o.is_none()).count();
+    let (w, h) = first.full;
+    // Without overlaps, the files cover the image exactly when their areas add up to it.
+    let covered: u64 = files.iter().map(|f| f.region.pixels()).sum();
+    if covered != w as u64 * h as u64 {
+        let (x, y) = first_uncovered(files, w, h);
         return Err(format!(
-            "the files leave {missing} pixels of the {w} x {h} image uncovered, the first at ({}, {})",
-            i as u32 % w,
-            i as u32 / w
+            "the files leave {} pixels of the {w} x {h} image uncovered, the first at ({x}, {y})",
+            w as u64 * h as u64 - covered
         ));
     }
+    let mut image = Image::new(w, h);
+    for f in files {
+        let r = f.region;
+        for (y, row) in (r.y0..r.y1).zip(f.image.pixels.chunks_exact(r.width() as usize)) {
+            let at = y as usize * w as usize + r.x0 as usize;
+            image.pixels[at..at + row.len()].copy_from_slice(row);
+        }
+    }
     Ok((image, first.tone))
+}
+
+/// The first pixel, row by row, that none of `files` covers (there is one).
+fn first_uncovered(files: &[RegionFile], w: u32, h: u32) -> (u32, u32) {
+    for y in 0..h {
+        let mut spans: Vec<(u32, u32)> = files
+            .iter()
+            .map(|f| f.region)
+            .filter(|r| r.y0 <= y && y < r.y1)
+            .map(|r| (r.x0, r.x1))
+            .collect();
+        spans.sort_unstable();
+        let mut x = 0;
+        for (x0, x1) in spans {
+            if x0 > x {
+                return (x, y);
+            }
+            x = x.max(x1);
+        }
+        if x < w {
+            return (x, y);
+        }
+    }
+    (0, 0)
 }
 
 #[cfg(test)]

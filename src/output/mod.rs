@@ -308,24 +308,26 @@ impl PendingOutput {
 
     /// Writes the `region` of `img` (a whole render's image, only the region rendered): a
     /// PNG of the region alone, tone mapped; an EXR of it at its place in the whole image,
-    /// with the render's `fingerprint` and tone for `snell merge`.
+    /// with its tone and the render's `fingerprint` for `snell merge` (`None` for an
+    /// unfinished region, which merge then refuses).
     pub fn commit_region(
         self,
         img: &Image,
         region: crate::film::Region,
         tone: &tone::Tone,
-        fingerprint: u64,
+        fingerprint: Option<u64>,
     ) -> Result<(), OutputError> {
         let part = region.crop(img);
+        let mut meta = vec![(merge::TONE, merge::tone_text(tone))];
+        if let Some(f) = fingerprint {
+            meta.push((merge::FINGERPRINT, format!("{f:016x}")));
+        }
         let bytes = match self.format {
             OutputFormat::Exr => encode_exr_region(
                 &part,
                 (region.x0, region.y0),
                 (img.width, img.height),
-                &[
-                    (merge::FINGERPRINT, format!("{fingerprint:016x}")),
-                    (merge::TONE, merge::tone_text(tone)),
-                ],
+                &meta,
                 self.path(),
             )?,
             _ => encode_toned(&part, self.format, self.path(), tone)?,

@@ -48,9 +48,9 @@ pub struct Rendered {
     pub rays: RayStats,
     /// Samples that came out NaN or infinite (left out of their pixels).
     pub bad_samples: BadSamples,
-    /// Tiles in the image (finished before, in a resumed render, included).
+    /// Tiles finished (before, in a resumed render, included).
     pub tiles_done: u32,
-    /// Tiles in all.
+    /// Tiles to render: all of the image's, or those that share a pixel with the region.
     pub tiles_total: u32,
     /// Pixels rendered in this run (those of tiles from an earlier run not counted).
     pub pixels_rendered: u64,
@@ -149,7 +149,8 @@ pub struct RenderOptions<'a> {
     /// Set to stop: tiles not yet started are skipped, tiles under way finish.
     pub cancel: Option<&'a AtomicBool>,
     /// Only the tiles that share a pixel with this region are rendered, if given (the
-    /// others are left as they were).
+    /// others are left as they were); it must lie within the film ([`Region::check`]).
+    /// Passes then count samples over it.
     pub region: Option<Region>,
 }
 

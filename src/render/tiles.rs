@@ -8,7 +8,8 @@ use rayon::prelude::*;
 use std::sync::atomic::{AtomicU64, Ordering};
 
 /// Calls `work(x, y, pixel, stats)` for every pixel of `film` outside the tiles `skip`
-/// names, each tile on one thread, then `finished(i, tile)` with the tile's pixels. Tiles
+/// names (and of the tiles that share a pixel with `options.region`, if given; progress
+/// then counts those tiles' pixels only), each tile on one thread, then `finished(i, tile)` with the tile's pixels. Tiles
 /// not yet started when `options.cancel` is set are left as they were. Returns each tile
 /// rendered with what its `stats` gathered, in tile order (so that whatever the stats keep
 /// is the same at any thread count).
@@ -25,14 +26,17 @@ where
 {
     let pool = super::thread_pool(options.threads)?;
     let grid = film.grid();
-    let skip = |i: u32| skip(i) || options.region.is_some_and(|r| !r.overlaps(grid.rect(i)));
     let n = grid.count();
+    // Progress counts the tiles done before (a resumed render's) as done, and leaves out
+    // those outside the region.
+    let outside = |i: u32| options.region.is_some_and(|r| !r.overlaps(grid.rect(i)));
     let done = AtomicU64::new(
         (0..n)
-            .filter(|&i| skip(i))
+            .filter(|&i| skip(i) && !outside(i))
             .map(|i| grid.len(i) as u64)
             .sum(),
     );
+    let skip = |i: u32| skip(i) || outside(i);
     // Visit the tiles in a scattered order, so every stretch of work mixes sky and busy
     // regions and the progress bar's ETA holds steady; each tile is its own slice of the
     // film, so the picture does not depend on the order.

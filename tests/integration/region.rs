@@ -126,6 +126,14 @@ fn bad_regions_are_refused_before_rendering() {
             &["--region", "0,0,8,8", "--checkpoint", "c.snellcp"][..],
             "--region cannot be combined with --checkpoint",
         ),
+        (
+            &["--region", "0,0,8,8", "--time", "2s"][..],
+            "--region cannot be combined with --time",
+        ),
+        (
+            &["--region", "0,0,8,8", "--aov", "normal"][..],
+            "--region cannot be combined with --aov",
+        ),
     ] {
         let o = snell(&[&base[..], extra].concat());
         let err = String::from_utf8_lossy(&o.stderr);
@@ -183,6 +191,9 @@ fn merged_regions_are_the_bytes_of_one_render() {
         }
         // Refused: a quarter missing, a quarter twice, a quarter of another render, and a
         // whole render's EXR (no fingerprint).
+        let middle = dir.join(format!("{name}-middle.exr"));
+        render_to(&scene, &middle, &["--region", "10,10,30,30"]);
+        let middle = middle.to_string_lossy().into_owned();
         let other = dir.join(format!("{name}-other.exr"));
         render_to(&scene, &other, &["--region", quarters[3], "--seed", "9"]);
         let plain = dir
@@ -202,7 +213,11 @@ fn merged_regions_are_the_bytes_of_one_render() {
             ),
             (
                 vec![&parts[0], &parts[1], &parts[2], &parts[3], &parts[1]],
-                "overlap",
+                "is given twice",
+            ),
+            (
+                vec![&parts[0], &parts[1], &parts[2], &parts[3], &middle],
+                "overlap (both hold pixel (10, 10))",
             ),
             (
                 vec![&parts[0], &parts[1], &parts[2], &o_s],
@@ -219,4 +234,44 @@ fn merged_regions_are_the_bytes_of_one_render() {
             assert!(!Path::new(&out).exists());
         }
     }
+}
+
+/// A hostile region file: a 1 x 1 data window in a display window of 100,000 x 100,000
+/// (what `snell merge` would otherwise allocate for), with the attributes of a real one.
+#[test]
+fn merge_refuses_a_region_file_of_an_enormous_image() {
+    use exr::prelude::*;
+    let dir = scratch("merge-hostile");
+    let path = dir.join("huge.exr");
+    let channel = |n: &str| AnyChannel::new(n, FlatSamples::F32(vec![0.5]));
+    let mut layer = Layer::new(
+        (1, 1),
+        LayerAttributes::default(),
+        Encoding::FAST_LOSSLESS,
+        AnyChannels::sort(SmallVec::from_vec(vec![
+            channel("R"),
+            channel("G"),
+            channel("B"),
+        ])),
+    );
+    layer.attributes.layer_position = Vec2(99_999, 99_999);
+    let mut image = exr::image::Image::new(
+        ImageAttributes::new(IntegerBounds::new(Vec2(0, 0), Vec2(100_000, 100_000))),
+        layer,
+    );
+    for (k, v) in [
+        ("snell.fingerprint", "00000000000000ff"),
+        ("snell.tone", "0 clamp"),
+    ] {
+        image
+            .attributes
+            .other
+            .insert(Text::from(k), AttributeValue::Text(Text::from(v)));
+    }
+    image.write().to_file(&path).unwrap();
+    let out = dir.join("out.exr").to_string_lossy().into_owned();
+    let o = snell(&["merge", "-o", &out, &path.to_string_lossy()]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(err.contains("100000 x 100000"), "{err}");
 }

@@ -19,6 +19,14 @@ pub(crate) struct MergeArgs {
 }
 
 pub(crate) fn merge_command(args: MergeArgs) -> ExitCode {
+    // The output first, as a render does: a bad destination fails before the reading.
+    let pending = match PendingOutput::create(&args.output) {
+        Ok(p) => p,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return ExitCode::from(2);
+        }
+    };
     let mut files = Vec::with_capacity(args.parts.len());
     for p in &args.parts {
         match read_region(p) {
@@ -31,13 +39,6 @@ pub(crate) fn merge_command(args: MergeArgs) -> ExitCode {
     }
     let (image, tone): (_, Tone) = match merge(&files) {
         Ok(m) => m,
-        Err(e) => {
-            eprintln!("error: {e}");
-            return ExitCode::from(2);
-        }
-    };
-    let pending = match PendingOutput::create(&args.output) {
-        Ok(p) => p,
         Err(e) => {
             eprintln!("error: {e}");
             return ExitCode::from(2);

@@ -101,10 +101,12 @@ pub(crate) fn render(args: RenderArgs) -> ExitCode {
         if let Err(e) = r.check(scene.settings.width, scene.settings.height) {
             return usage_error(&e, None);
         }
+        // --time would stop a region at its own count of samples, not the whole render's.
         let other = [
             (args.checkpoint.is_some(), "--checkpoint"),
             (args.resume.is_some(), "--resume"),
             (!args.aov.is_empty(), "--aov"),
+            (args.time.is_some(), "--time"),
         ];
         if let Some((_, flag)) = other.iter().find(|(given, _)| *given) {
             return usage_error(
@@ -156,8 +158,14 @@ pub(crate) fn render(args: RenderArgs) -> ExitCode {
         scene.settings.spp,
     );
     let pixels = w as u64 * h as u64;
+    // The bar counts the pixels of the tiles rendered (a region's).
+    let bar_pixels = snell::film::TileGrid {
+        width: w,
+        height: h,
+    }
+    .pixels_in(args.region);
     let bar = if !args.quiet && std::io::stderr().is_terminal() {
-        let bar = ProgressBar::with_draw_target(Some(pixels), ProgressDrawTarget::stderr());
+        let bar = ProgressBar::with_draw_target(Some(bar_pixels), ProgressDrawTarget::stderr());
         bar.set_style(
             ProgressStyle::with_template(
                 "{spinner} rendering [{elapsed_precise}] {wide_bar} {percent:>3}%  {msg}ETA {eta}",
@@ -224,7 +232,13 @@ pub(crate) fn render(args: RenderArgs) -> ExitCode {
     }
     let written = if let Some(r) = args.region {
         pending
-            .commit_region(&outcome.image, r, &scene.settings.tone, fingerprint)
+            // An unfinished region is not one `snell merge` may take: no fingerprint.
+            .commit_region(
+                &outcome.image,
+                r,
+                &scene.settings.tone,
+                outcome.complete.then_some(fingerprint),
+            )
             .map_err(|e| e.to_string())
     } else if aovs.is_empty() {
         pending

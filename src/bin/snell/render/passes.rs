@@ -17,7 +17,8 @@ pub(crate) fn render_passes(
     time: Option<Duration>,
 ) -> Result<Outcome, String> {
     let s = &run.scene.settings;
-    let pixels = s.width as u64 * s.height as u64;
+    // The pixels of the tiles rendered (a region's), which the bar counts.
+    let pixels = film_grid(s.width, s.height).pixels_in(run.region);
     let mut film = earlier.unwrap_or_else(|| Film::new(s.width, s.height));
     run.bar.set_length(pixels * s.spp as u64);
     // The pass under way: the bar's position at its start, and its samples per pixel.
@@ -33,7 +34,7 @@ pub(crate) fn render_passes(
         region: run.region,
     };
     // The picture's estimated error after the last pass, shown on the bar (worked out only
-    // where the bar is seen: it reads the whole film).
+    // where the bar is seen: it reads the whole film, or the region).
     let mut error: Option<f32> = None;
     let mut last_save = Instant::now();
     let mut save_error = None;
@@ -118,4 +119,9 @@ pub(crate) fn render_passes(
         error,
         film: kept,
     })
+}
+
+/// The tile grid of a `width` x `height` film.
+fn film_grid(width: u32, height: u32) -> snell::film::TileGrid {
+    snell::film::TileGrid { width, height }
 }
