@@ -173,12 +173,7 @@ pub fn encode_exr_layers(
     use exr::prelude::*;
     let size = (img.width as usize, img.height as usize);
     let channel = |name: &str, values: Vec<f32>| AnyChannel::new(name, FlatSamples::F32(values));
-    let plane = |k: usize| img.pixels.iter().map(|c| c[k]).collect::<Vec<f32>>();
-    let mut channels = vec![
-        channel("R", plane(0)),
-        channel("G", plane(1)),
-        channel("B", plane(2)),
-    ];
+    let mut channels = rgb_channels(img);
     for (layer, list) in layers {
         for (c, values) in list {
             channels.push(channel(&format!("{layer}.{c}"), values.clone()));
@@ -194,13 +189,7 @@ pub fn encode_exr_layers(
     image
         .write()
         .to_buffered(std::io::Cursor::new(&mut bytes))
-        .map_err(|e| OutputError::Encode {
-            path: path.to_path_buf(),
-            source: image::ImageError::Encoding(image::error::EncodingError::new(
-                image::error::ImageFormatHint::Exact(image::ImageFormat::OpenExr),
-                e,
-            )),
-        })?;
+        .map_err(|e| exr_error(path, e))?;
     Ok(bytes)
 }
 
@@ -216,21 +205,11 @@ pub fn encode_exr_region(
     path: &Path,
 ) -> Result<Vec<u8>, OutputError> {
     use exr::prelude::*;
-    let channel = |name: &str, k: usize| {
-        AnyChannel::new(
-            name,
-            FlatSamples::F32(img.pixels.iter().map(|c| c[k]).collect()),
-        )
-    };
     let mut layer = Layer::new(
         (img.width as usize, img.height as usize),
         LayerAttributes::default(),
         Encoding::FAST_LOSSLESS,
-        AnyChannels::sort(SmallVec::from_vec(vec![
-            channel("R", 0),
-            channel("G", 1),
-            channel("B", 2),
-        ])),
+        AnyChannels::sort(SmallVec::from_vec(rgb_channels(img))),
     );
     layer.attributes.layer_position = Vec2(at.0 as i32, at.1 as i32);
     let display = IntegerBounds::new(Vec2(0, 0), Vec2(full.0 as usize, full.1 as usize));
@@ -245,14 +224,30 @@ pub fn encode_exr_region(
     image
         .write()
         .to_buffered(std::io::Cursor::new(&mut bytes))
-        .map_err(|e| OutputError::Encode {
-            path: path.to_path_buf(),
-            source: image::ImageError::Encoding(image::error::EncodingError::new(
-                image::error::ImageFormatHint::Exact(image::ImageFormat::OpenExr),
-                e,
-            )),
-        })?;
+        .map_err(|e| exr_error(path, e))?;
     Ok(bytes)
+}
+
+/// The picture's `R`, `G` and `B` channels, 32-bit float.
+fn rgb_channels(img: &Image) -> Vec<exr::prelude::AnyChannel<exr::prelude::FlatSamples>> {
+    use exr::prelude::*;
+    let plane = |k: usize| FlatSamples::F32(img.pixels.iter().map(|c| c[k]).collect());
+    vec![
+        AnyChannel::new("R", plane(0)),
+        AnyChannel::new("G", plane(1)),
+        AnyChannel::new("B", plane(2)),
+    ]
+}
+
+/// An EXR writer's failure, as an encoding error of the file at `path`.
+fn exr_error(path: &Path, e: exr::error::Error) -> OutputError {
+    OutputError::Encode {
+        path: path.to_path_buf(),
+        source: image::ImageError::Encoding(image::error::EncodingError::new(
+            image::error::ImageFormatHint::Exact(image::ImageFormat::OpenExr),
+            e,
+        )),
+    }
 }
 
 /// An image file reserved before rendering: its format checked and its temporary file
