@@ -4,7 +4,9 @@
 //! of a render must do lives here once, not in each front end.
 
 use crate::checkpoint::{Checkpoint, fingerprint};
-use crate::scene::{Limits, RenderSettings, Scene, SceneError, available_memory, memory_estimate};
+use crate::scene::{
+    AssetCache, Limits, RenderSettings, Scene, SceneError, available_memory, memory_estimate,
+};
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
@@ -109,8 +111,24 @@ impl RenderJob {
         limits: &Limits,
         resumed: Option<&Checkpoint>,
     ) -> Result<RenderJob, JobError> {
+        let mut assets = AssetCache::default();
+        Self::prepare_frame(scene_path, overrides, limits, resumed, 0, &mut assets)
+    }
+
+    /// As [`RenderJob::prepare`], for `frame` of the scene's animation, with the images
+    /// and meshes `assets` kept from the frames prepared before. A frame's fingerprint is
+    /// its own, so regions of different frames do not merge.
+    pub fn prepare_frame(
+        scene_path: &Path,
+        overrides: &Overrides,
+        limits: &Limits,
+        resumed: Option<&Checkpoint>,
+        frame: u32,
+        assets: &mut AssetCache,
+    ) -> Result<RenderJob, JobError> {
         let start = Instant::now();
-        let mut scene = crate::scene::load_with(scene_path, limits).map_err(JobError::Scene)?;
+        let mut scene =
+            crate::scene::load_frame(scene_path, limits, frame, assets).map_err(JobError::Scene)?;
         let load_time = start.elapsed();
         let s = &mut scene.settings;
         if let Some(c) = resumed {
@@ -143,6 +161,11 @@ impl RenderJob {
             s.seed
         } else {
             settings_hash
+        };
+        // The frame too, in an animation (a still's fingerprint stays as it was).
+        let seed_and_integrator = match scene.animation {
+            Some(_) => crate::math::hash_seed(&[seed_and_integrator, frame as u64]),
+            None => seed_and_integrator,
         };
         let fingerprint = fingerprint(&bytes, s.width, s.height, s.spp, seed_and_integrator);
         if let Some(c) = resumed

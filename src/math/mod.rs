@@ -10,6 +10,7 @@ pub mod differential;
 pub mod distribution;
 pub mod distribution2d;
 mod frame;
+pub mod keyframes;
 mod offset;
 pub mod poly;
 mod rng;

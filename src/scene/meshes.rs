@@ -140,15 +140,22 @@ impl Builder<'_> {
         if let Some(cached) = self.mesh_cache.get(&key) {
             return cached.clone();
         }
+        // An earlier build of this scene (an animation's frame before) may have read it.
+        if let Some(loaded) = self.replay_mesh(&key, palette) {
+            self.mesh_cache.insert(key, Some(loaded.clone()));
+            return Some(loaded);
+        }
         let gltf = full
             .extension()
             .is_some_and(|e| e.eq_ignore_ascii_case("gltf") || e.eq_ignore_ascii_case("glb"));
-        let loaded = if gltf {
-            self.read_gltf(file, &full, smooth, path, palette)
-        } else {
-            self.read_mesh(file, &full, smooth, path, palette)
-                .map(|m| vec![m])
-        };
+        let loaded = self.record_mesh(key.clone(), palette, |b, palette| {
+            if gltf {
+                b.read_gltf(file, &full, smooth, path, palette)
+            } else {
+                b.read_mesh(file, &full, smooth, path, palette)
+                    .map(|m| vec![m])
+            }
+        });
         self.mesh_cache.insert(key, loaded.clone());
         loaded
     }

@@ -1,6 +1,7 @@
 //! The scene: read from a file (`format`), checked and resolved (`build`), then immutable
 //! and shared by every render thread.
 
+mod assets;
 mod build;
 mod cutout;
 mod detail;
@@ -12,7 +13,8 @@ mod limits;
 mod meshes;
 mod mtl;
 
-pub use build::{MAX_MAGNITUDE, load, load_str, load_with};
+pub use assets::AssetCache;
+pub use build::{Animation, MAX_FRAMES, MAX_MAGNITUDE, load, load_frame, load_str, load_with};
 pub use detail::UvFrame;
 pub use diag::{DocPath, Format, Problem, SceneDiagnostic, SceneError, Seg, did_you_mean};
 pub use footprint::{RayDifferentials, SurfacePatch};
@@ -350,6 +352,10 @@ pub struct Scene {
     /// The files the scene read besides itself (textures, meshes, MTL files and their
     /// maps), sorted: what a preview watches for changes.
     pub files: Vec<PathBuf>,
+    /// Its `[animation]`'s frame count and rate, if it has one.
+    pub animation: Option<Animation>,
+    /// The frame of the animation this is (0 for a scene without one).
+    pub frame: u32,
 }
 
 impl Scene {

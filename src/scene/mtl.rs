@@ -11,8 +11,7 @@ use crate::material::plastic::Plastic;
 use crate::material::{ColorParam, Emission, Material, Scalar, Surface, thin};
 use crate::math::Color;
 use crate::mesh_file::MtlMaterial;
-use crate::texture::{ColorSpace, ImageData, Mapping, Pattern, Texture};
-use std::sync::Arc;
+use crate::texture::{ColorSpace, Mapping, Pattern, Texture};
 
 /// The type an MTL material becomes.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -88,12 +87,8 @@ impl Builder<'_> {
         let pattern = match &m.map_kd {
             // Clear glass: `Tf` colours only Phong's see-through materials.
             _ if clear => Pattern::Solid(Color::ONE),
-            Some(file) => match ImageData::load_limited(
-                file,
-                ColorSpace::Srgb,
-                self.limits.max_texture_pixels,
-            ) {
-                Ok(img) => Pattern::Image(Arc::new(img.with_mipmaps())),
+            Some(file) => match self.image(file, ColorSpace::Srgb, true) {
+                Ok(img) => Pattern::Image(img),
                 Err(e) => {
                     self.error_help(
                         path.clone(),

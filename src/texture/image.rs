@@ -3,7 +3,7 @@ use std::cell::Cell;
 use std::path::Path;
 
 /// How the numbers in an image file relate to light.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum ColorSpace {
     /// sRGB-encoded (photographs, painted textures): decoded to linear on load.
     Srgb,

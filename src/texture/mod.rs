@@ -7,7 +7,9 @@ mod image;
 mod mapping;
 mod mipmap;
 
-pub use image::{ColorSpace, ImageData, decode, in_guarded_decoder, srgb_to_linear};
+pub use image::{
+    ColorSpace, ImageData, ImageLoadError, decode, in_guarded_decoder, srgb_to_linear,
+};
 pub use mapping::{Footprint, Mapping, TexturePoint};
 
 use crate::math::{Color, Vec2};

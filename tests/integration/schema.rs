@@ -426,6 +426,7 @@ file = "statue.obj"
 smooth = true
 [[lights]]
 type = "point"
+name = "lamp"
 position = [0, 5, 0]
 color = 1
 intensity = 2
@@ -526,6 +527,37 @@ lights = true
 [[objects]]
 type = "mesh"
 mesh = "statue"
+[animation]
+frames = 48
+fps = 24
+interpolation = "linear"
+[[animation.camera]]
+frame = 0
+interpolation = "step"
+position = [0, 2, 6]
+look_at = [0, 0, 0]
+up = [0, 1, 0]
+fov = 40
+focus_distance = 6
+[[animation.camera]]
+time = 1.5
+position = [1, 2, 6]
+[[animation.objects]]
+object = "ball"
+frame = 0
+interpolation = "smooth"
+scale = 1
+rotate = [0, 0, 0]
+translate = [0, 1, 0]
+[[animation.lights]]
+light = "lamp"
+frame = 0
+interpolation = "linear"
+position = [0, 5, 0]
+direction = [0, -1, 0]
+look_at = [0, 0, 0]
+color = 1
+intensity = 2
 "#;
 
 /// Every key (`properties`) and every `const` string the schema names.

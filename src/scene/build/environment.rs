@@ -6,8 +6,7 @@ use crate::light::sky::Sky;
 use crate::light::{Environment, EnvironmentMap, EnvironmentSource};
 use crate::scene::diag::DocPath;
 use crate::scene::format::EnvironmentDef;
-use crate::texture::{ColorSpace, ImageData};
-use std::sync::Arc;
+use crate::texture::ColorSpace;
 
 impl Builder<'_> {
     pub(super) fn environment(
@@ -36,16 +35,10 @@ impl Builder<'_> {
                 self.files.push(full.clone());
                 // Float files (.hdr, .exr) are linear whatever this says; 8-bit ones are
                 // photographs, sRGB.
-                match ImageData::load_limited(
-                    &full,
-                    ColorSpace::Srgb,
-                    self.limits.max_texture_pixels,
-                ) {
+                match self.image(&full, ColorSpace::Srgb, false) {
                     Ok(img) => Some(Environment {
                         source: EnvironmentSource::Map(Box::new(EnvironmentMap::new(
-                            Arc::new(img),
-                            rotate,
-                            scale,
+                            img, rotate, scale,
                         ))),
                         visible: *visible,
                     }),

@@ -1,6 +1,7 @@
 //! From a scene file to a [`Scene`]: parse, check every value, resolve names and paths, load
 //! textures. Problems are collected (not just the first) and located in the text.
 
+use super::assets::AssetCache;
 use super::diag::{DocPath, Format, Problem, SceneError, did_you_mean, offset_of};
 use super::format::*;
 use super::meshes::{LoadedMesh, MeshCache, Palette};
@@ -12,12 +13,14 @@ use crate::light::{Light, LightSampler};
 use crate::material::detail::SurfaceDetail;
 use crate::math::{Color, Frame, Transform, Vec3, Vec3A};
 use crate::sampler::SamplerKind;
-use crate::texture::{ColorSpace, ImageData, Mapping, Pattern, Texture};
+use crate::texture::{ColorSpace, Mapping, Pattern, Texture};
 use material::MaterialTextures;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
+pub use animation::{Animation, MAX_FRAMES};
+mod animation;
 pub(super) mod camera;
 mod csg;
 mod emitters;
@@ -34,6 +37,17 @@ pub fn load(path: &Path) -> Result<Scene, SceneError> {
 /// As [`load`], checking the scene against `limits` (image size, samples, depth, texture
 /// sizes, triangles) instead of the defaults.
 pub fn load_with(path: &Path, limits: &Limits) -> Result<Scene, SceneError> {
+    load_frame(path, limits, 0, &mut AssetCache::default())
+}
+
+/// As [`load_with`], the scene at `frame` of its `[animation]` (a scene without one has
+/// frame 0 only), reusing the images and meshes `assets` kept from earlier frames.
+pub fn load_frame(
+    path: &Path,
+    limits: &Limits,
+    frame: u32,
+    assets: &mut AssetCache,
+) -> Result<Scene, SceneError> {
     let format = match path.extension().and_then(|e| e.to_str()) {
         Some(e) if e.eq_ignore_ascii_case("json") => Format::Json,
         Some(e) if e.eq_ignore_ascii_case("toml") => Format::Toml,
@@ -56,7 +70,7 @@ pub fn load_with(path: &Path, limits: &Limits) -> Result<Scene, SceneError> {
         )
     })?;
     let base = path.parent().unwrap_or(Path::new("."));
-    build(&text, path, base, format, limits)
+    build(&text, path, base, format, limits, frame, assets)
 }
 
 /// Builds a scene from text. `file` names it in messages; `base_dir` resolves relative paths.
@@ -66,7 +80,16 @@ pub fn load_str(
     base_dir: &Path,
     format: Format,
 ) -> Result<Scene, SceneError> {
-    build(text, file, base_dir, format, &Limits::default())
+    let mut assets = AssetCache::default();
+    build(
+        text,
+        file,
+        base_dir,
+        format,
+        &Limits::default(),
+        0,
+        &mut assets,
+    )
 }
 
 fn build(
@@ -75,9 +98,13 @@ fn build(
     base_dir: &Path,
     format: Format,
     limits: &Limits,
+    frame: u32,
+    assets: &mut AssetCache,
 ) -> Result<Scene, SceneError> {
-    let def = parse(text, format).map_err(|p| SceneError::located(file, text, format, vec![p]))?;
+    let mut def =
+        parse(text, format).map_err(|p| SceneError::located(file, text, format, vec![p]))?;
     let mut b = Builder {
+        assets,
         problems: vec![],
         warnings: vec![],
         base_dir,
@@ -87,7 +114,10 @@ fn build(
         triangles_loaded: 0,
         files: vec![],
     };
+    let animation = b.animate(&mut def, frame);
     let mut scene = b.scene(def);
+    scene.animation = animation;
+    scene.frame = frame;
     b.files.sort();
     b.files.dedup();
     if b.problems.is_empty() {
@@ -351,6 +381,8 @@ pub(super) struct Builder<'a> {
     problems: Vec<Problem>,
     pub(super) warnings: Vec<String>,
     pub(super) base_dir: &'a Path,
+    /// Images and meshes earlier builds of the scene loaded (an animation's frames).
+    pub(super) assets: &'a mut AssetCache,
     /// Meshes loaded so far, by file and normals option (`None` where loading failed).
     pub(super) mesh_cache: MeshCache,
     pub(super) stats: BuildStats,
@@ -362,6 +394,10 @@ pub(super) struct Builder<'a> {
 }
 
 impl Builder<'_> {
+    pub(super) fn problem_count(&self) -> usize {
+        self.problems.len()
+    }
+
     pub(super) fn error(&mut self, path: DocPath, msg: impl Into<String>) {
         self.problems.push(Problem::new(path, msg));
     }
@@ -755,6 +791,8 @@ impl Builder<'_> {
             stats: std::mem::take(&mut self.stats),
             limits: self.limits,
             files: vec![],
+            animation: None,
+            frame: 0,
         }
     }
 
@@ -955,12 +993,8 @@ impl Builder<'_> {
                     None if data => ColorSpace::Linear,
                     None => ColorSpace::Srgb,
                 };
-                let pattern = match ImageData::load_limited(
-                    &full,
-                    space,
-                    self.limits.max_texture_pixels,
-                ) {
-                    Ok(img) => Pattern::Image(Arc::new(img.with_mipmaps())),
+                let pattern = match self.image(&full, space, true) {
+                    Ok(img) => Pattern::Image(img),
                     Err(e) => {
                         self.error_help(
                             path.key("file"),
@@ -1008,6 +1042,7 @@ impl Builder<'_> {
                 falloff,
                 color,
                 intensity,
+                ..
             } => Light::Point {
                 position: self.point(*position, &path.key("position")),
                 color: self.color(*color, &path.key("color"))
@@ -1018,6 +1053,7 @@ impl Builder<'_> {
                 direction,
                 color,
                 intensity,
+                ..
             } => Light::Directional {
                 direction: self.direction(*direction, &path.key("direction")),
                 color: self.color(*color, &path.key("color"))
@@ -1032,6 +1068,7 @@ impl Builder<'_> {
                 intensity,
                 angle,
                 soft_edge,
+                ..
             } => {
                 let position = self.point(*position, &path.key("position"));
                 let direction = match (look_at, direction) {

@@ -4,11 +4,15 @@
 //! become its descriptions, serde defaults its defaults (shown where the default's type is
 //! `Serialize`, which is why a few of these derive it).
 
+mod animation;
 mod environment;
 mod integrator;
 mod material;
 mod values;
 
+pub use animation::{
+    AnimationDef, CameraKeyDef, InterpolationDef, KeyTimeDef, Keyed, LightKeyDef, ObjectKeyDef,
+};
 pub use environment::EnvironmentDef;
 pub use integrator::{IntegratorDef, IntegratorKind, SamplerDef};
 pub use material::{MaterialDef, MaterialKind};
@@ -65,6 +69,9 @@ pub struct SceneFile {
     /// Shapes.
     #[serde(default)]
     pub objects: Vec<ObjectDef>,
+    /// Frames and keyframes: the camera, objects and lights moving over time (without it
+    /// the scene is one frame, 0).
+    pub animation: Option<AnimationDef>,
 }
 
 /// `[meshes.NAME]`: a mesh file, loaded once however many objects place it.
@@ -354,6 +361,8 @@ impl Default for MappingDef {
 pub enum LightDef {
     /// A point light.
     Point {
+        /// Name, for messages and `[[animation.lights]]`.
+        name: Option<String>,
         /// Position.
         position: V3,
         /// How its light weakens with distance (default: `none` under the Whitted
@@ -368,6 +377,8 @@ pub enum LightDef {
     },
     /// A directional light.
     Directional {
+        /// Name, for messages and `[[animation.lights]]`.
+        name: Option<String>,
         /// Direction the light travels.
         direction: V3,
         /// Colour.
@@ -379,6 +390,8 @@ pub enum LightDef {
     },
     /// A spot light.
     Spot {
+        /// Name, for messages and `[[animation.lights]]`.
+        name: Option<String>,
         /// Position.
         position: V3,
         /// How its light weakens with distance (default: `none` under the Whitted
@@ -462,6 +475,13 @@ macro_rules! object_defs {
             pub fn common(&self) -> (&Option<String>, &Option<String>, &Option<TransformDef>) {
                 match self {
                     $( ObjectDef::$variant(o) => (&o.name, &o.material, &o.transform), )*
+                }
+            }
+
+            /// The object's name and transform, to be changed (by a frame of an animation).
+            pub fn placement_mut(&mut self) -> (&Option<String>, &mut Option<TransformDef>) {
+                match self {
+                    $( ObjectDef::$variant(o) => (&o.name, &mut o.transform), )*
                 }
             }
 
