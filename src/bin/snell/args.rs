@@ -173,6 +173,15 @@ pub(crate) struct RenderArgs {
     /// the region alone; an EXR holds it at its place in the whole image (its data window).
     #[arg(long, value_parser = parse_region, value_name = "X0,Y0,X1,Y1")]
     pub(crate) region: Option<snell::render::Region>,
+    /// Frames of the scene's [animation] to render: A..B (A to B, both included) or one
+    /// frame N. With more than one frame the output names a pattern whose run of # is
+    /// the frame number, zero-padded: -o out/frame_####.png.
+    #[arg(long, value_parser = parse_frames, value_name = "A..B")]
+    pub(crate) frames: Option<FrameRange>,
+    /// With --frames: leave a frame whose output file exists as it is (outputs are written
+    /// whole or not at all, so an existing one is finished): a stopped job resumes.
+    #[arg(long, requires = "frames")]
+    pub(crate) skip_existing: bool,
     /// Print nothing but errors.
     #[arg(short, long)]
     pub(crate) quiet: bool,
@@ -325,6 +334,41 @@ fn positive<T: std::str::FromStr + PartialEq + Default>(s: &str) -> Result<T, St
             "`{s}` is not a positive whole number (1, 2, 3 ...)"
         )),
     }
+}
+
+/// `--frames A..B`: frames A to B, both included.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct FrameRange {
+    pub(crate) first: u32,
+    pub(crate) last: u32,
+}
+
+impl FrameRange {
+    /// How many frames.
+    pub(crate) fn count(&self) -> u64 {
+        (self.last - self.first) as u64 + 1
+    }
+}
+
+fn parse_frames(s: &str) -> Result<FrameRange, String> {
+    let number = |t: &str| {
+        t.trim().parse::<u32>().map_err(|_| {
+            format!("`{s}` is not a frame range: give A..B (frames A to B, both included) or one frame N, whole numbers from 0")
+        })
+    };
+    let (first, last) = match s.split_once("..") {
+        Some((a, b)) => (number(a)?, number(b.strip_prefix('=').unwrap_or(b))?),
+        None => {
+            let n = number(s)?;
+            (n, n)
+        }
+    };
+    if last < first {
+        return Err(format!(
+            "`{s}` runs backwards: the first frame comes first ({last}..{first})"
+        ));
+    }
+    Ok(FrameRange { first, last })
 }
 
 /// `--region X0,Y0,X1,Y1`.

@@ -75,6 +75,13 @@ enum Command {
         scene: PathBuf,
         #[command(flatten)]
         limits: LimitArgs,
+        /// Print one JSON object instead: the image's size and samples (after the flags
+        /// below), the animation's frames and rate, and every file the scene reads, for
+        /// tools that plan a render (snell-farm).
+        #[arg(long)]
+        json: bool,
+        #[command(flatten)]
+        image: args::ImageArgs,
     },
     /// Explain one pixel: print the tree of rays behind one of its samples, with what each
     /// ray hit, the material's terms, every light and its shadow ray, the Fresnel split and
@@ -113,8 +120,22 @@ fn main() -> ExitCode {
     let cli = Cli::parse();
     match cli.command {
         Command::Render(args) => render::render(args),
-        Command::Check { scene, limits } => match limits.get() {
-            Ok(l) => check(&scene, &l),
+        Command::Check {
+            scene,
+            limits,
+            json,
+            image,
+        } => match limits.get() {
+            Ok(l) if json => check_json(&scene, &l, &image.overrides(None)),
+            Ok(l) => {
+                if image.overrides(None) != snell::job::Overrides::default() {
+                    return usage_error(
+                        "--width, --height and the sampling flags are for `check --json`",
+                        Some("add --json, or leave them out"),
+                    );
+                }
+                check(&scene, &l)
+            }
             Err(code) => code,
         },
         Command::Explain(args) => explain::explain(args),
@@ -173,6 +194,32 @@ pub(crate) fn load(path: &Path, limits: &Limits) -> Result<snell::Scene, ExitCod
         print_scene_error(&e);
         ExitCode::from(2)
     })
+}
+
+/// `check --json`: what a tool needs to plan a render of the scene, after the overrides.
+fn check_json(path: &Path, limits: &Limits, overrides: &snell::job::Overrides) -> ExitCode {
+    let job = match snell::job::RenderJob::prepare(path, overrides, limits, None) {
+        Ok(job) => job,
+        Err(e) => return job_error(e),
+    };
+    let s = &job.scene;
+    let absolute = |p: &Path| {
+        std::fs::canonicalize(p)
+            .or_else(|_| std::path::absolute(p))
+            .unwrap_or_else(|_| p.to_path_buf())
+    };
+    let value = serde_json::json!({
+        "scene": absolute(path),
+        "width": s.settings.width,
+        "height": s.settings.height,
+        "spp": s.settings.spp,
+        "frames": s.animation.map_or(1, |a| a.frames),
+        "fps": s.animation.map(|a| a.fps),
+        "files": s.files.iter().map(|f| absolute(f)).collect::<Vec<_>>(),
+        "warnings": s.warnings,
+    });
+    outln!("{value}");
+    ExitCode::SUCCESS
 }
 
 fn check(path: &Path, limits: &Limits) -> ExitCode {

@@ -10,6 +10,7 @@ use snell::job::RenderJob;
 use snell::output::{ExrLayer, OutputError, OutputFormat, PendingOutput, encode_exr_layers};
 use snell::render::{RenderOptions, TileStore};
 
+mod frames;
 mod passes;
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
@@ -51,6 +52,9 @@ fn aov_path(out: &Path, aov: Aov) -> PathBuf {
 }
 
 pub(crate) fn render(args: RenderArgs) -> ExitCode {
+    if let Some(range) = args.frames {
+        return frames::render_frames(&args, range);
+    }
     let resumed = match &args.resume {
         None => None,
         Some(path) => match Checkpoint::load(path) {
@@ -67,21 +71,38 @@ pub(crate) fn render(args: RenderArgs) -> ExitCode {
         Ok(l) => l,
         Err(code) => return code,
     };
-    let overrides = snell::job::Overrides {
-        exposure: args.exposure,
-        tonemap: args.tonemap,
-        ..args.image.overrides(args.seed)
-    };
+    let overrides = overrides(&args);
     let job = match RenderJob::prepare(&scene_path, &overrides, &limits, resumed.as_ref()) {
         Ok(job) => job,
         Err(e) => return job_error(e),
     };
-    let (scene, fingerprint, load_time) = (job.scene, job.fingerprint, job.load_time);
     let out_path = args
         .output
         .clone()
         .or_else(|| resumed.as_ref().map(|c| c.output.clone()))
         .unwrap_or_else(|| RenderJob::default_output(&scene_path));
+    render_job(&args, job, &out_path, resumed)
+}
+
+/// The command line's overrides of the scene's settings.
+fn overrides(args: &RenderArgs) -> snell::job::Overrides {
+    snell::job::Overrides {
+        exposure: args.exposure,
+        tonemap: args.tonemap,
+        ..args.image.overrides(args.seed)
+    }
+}
+
+/// Renders a prepared job to `out_path`: the picture, or what an interruption leaves.
+fn render_job(
+    args: &RenderArgs,
+    job: RenderJob,
+    out_path: &Path,
+    resumed: Option<Checkpoint>,
+) -> ExitCode {
+    let scene_path = job.scene_path.clone();
+    let (scene, fingerprint, load_time) = (job.scene, job.fingerprint, job.load_time);
+    let out_path = out_path.to_path_buf();
     let checkpoint_path = args.checkpoint.clone().or_else(|| args.resume.clone());
     if !(args.checkpoint_every > 0.0 && args.checkpoint_every.is_finite()) {
         return usage_error(
