@@ -5,7 +5,7 @@
 use glam::Vec2;
 use image::Limits;
 use libfuzzer_sys::fuzz_target;
-use snell::texture::{ColorSpace, ImageData};
+use snell::texture::{ColorSpace, ImageData, Wrap, Wraps};
 use std::sync::Once;
 
 fuzz_target!(|data: &[u8]| {
@@ -48,8 +48,8 @@ fuzz_target!(|data: &[u8]| {
             Vec2::new(f32::MAX, f32::MIN),
             Vec2::new(f32::NAN, 0.5),
         ] {
-            for clamp_v in [false, true] {
-                let _ = tex.sample_bilinear(uv, clamp_v);
+            for wrap in [Wrap::Repeat, Wrap::Clamp, Wrap::Mirror] {
+                let _ = tex.sample_bilinear(uv, Wraps::both(wrap));
             }
         }
     }

@@ -130,7 +130,13 @@ impl EnvironmentMap {
 
     #[inline]
     fn radiance_at(&self, uv: Vec2) -> Color {
-        self.image.sample_bilinear(uv, true) * self.scale
+        self.image.sample_bilinear(
+            uv,
+            crate::texture::Wraps {
+                u: crate::texture::Wrap::Repeat,
+                v: crate::texture::Wrap::Clamp,
+            },
+        ) * self.scale
     }
 
     /// The density per unit solid angle of image coordinates `uv`: the texel density over

@@ -68,6 +68,7 @@ mod tests {
                 width: 0.5,
             },
             mapping: Mapping::Uv,
+            wrap: crate::texture::Wraps::REPEAT,
         }];
         let at = |u: f32| TexturePoint::with_uv(Vec2::new(u, 0.0));
         let c = ColorParam::Texture(0);

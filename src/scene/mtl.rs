@@ -11,7 +11,7 @@ use crate::material::plastic::Plastic;
 use crate::material::{ColorParam, Emission, Material, Scalar, Surface, thin};
 use crate::math::Color;
 use crate::mesh_file::MtlMaterial;
-use crate::texture::{ColorSpace, Mapping, Pattern, Texture};
+use crate::texture::{ColorSpace, Mapping, Pattern, Texture, Wraps};
 
 /// The type an MTL material becomes.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -104,6 +104,7 @@ impl Builder<'_> {
         textures.push(Texture {
             pattern,
             mapping: Mapping::Uv,
+            wrap: Wraps::REPEAT,
         });
         let texture = textures.len() - 1;
         let emission =

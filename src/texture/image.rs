@@ -1,3 +1,4 @@
+use super::Wraps;
 use crate::math::{Color, Vec2};
 use std::cell::Cell;
 use std::path::Path;
@@ -279,8 +280,8 @@ impl ImageData {
     }
 
     /// Bilinear lookup at texture coordinates (texel centres at `(i + 0.5) / size`),
-    /// repeating horizontally, and vertically unless `clamp_v`.
-    pub fn sample_bilinear(&self, uv: Vec2, clamp_v: bool) -> Color {
+    /// outside `[0, 1]` as `wrap` says on each axis.
+    pub fn sample_bilinear(&self, uv: Vec2, wrap: Wraps) -> Color {
         let x = uv.x * self.width as f32 - 0.5;
         let y = uv.y * self.height as f32 - 0.5;
         // Checked after scaling: a finite uv near f32::MAX becomes infinite here, and the
@@ -296,24 +297,11 @@ impl ImageData {
         // f32 has no fraction left anyway.
         let (x0, y0) = (x0 as i64, y0 as i64);
         let (w, h) = (self.width as i64, self.height as i64);
-        // The four texels' columns and rows, wrapped (or clamped) once for all four.
-        let next = |i: i64, n: i64| if i + 1 == n { 0 } else { i + 1 };
-        // (A division only where the texel lies outside: the common case is inside.)
-        let wrap = |i: i64, n: i64| {
-            if (0..n).contains(&i) {
-                i
-            } else {
-                i.rem_euclid(n)
-            }
-        };
-        let xa = wrap(x0, w);
-        let xb = next(xa, w);
-        let (ya, yb) = if clamp_v {
-            (y0.clamp(0, h - 1), y0.saturating_add(1).clamp(0, h - 1))
-        } else {
-            let ya = wrap(y0, h);
-            (ya, next(ya, h))
-        };
+        // The four texels' columns and rows.
+        let xa = wrap.u.index(x0, w);
+        let xb = wrap.u.index(x0.saturating_add(1), w);
+        let ya = wrap.v.index(y0, h);
+        let yb = wrap.v.index(y0.saturating_add(1), h);
         let at = |x: i64, y: i64| (y * w + x) as usize;
         // One match per lookup, not per texel.
         match &self.texels {
@@ -411,6 +399,13 @@ pub fn srgb_to_linear(x: f32) -> f32 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::texture::Wrap;
+
+    /// Spherical mappings' wraps: around in u, clamped at the poles in v.
+    const CLAMP_V: Wraps = Wraps {
+        u: Wrap::Repeat,
+        v: Wrap::Clamp,
+    };
 
     fn two_by_one(space: ColorSpace) -> ImageData {
         let mut img = ::image::RgbImage::new(2, 1);
@@ -422,10 +417,11 @@ mod tests {
     #[test]
     fn srgb_is_decoded_to_linear() {
         let img = two_by_one(ColorSpace::Srgb);
-        let c = img.sample_bilinear(Vec2::new(0.75, 0.5), false);
+        let c = img.sample_bilinear(Vec2::new(0.75, 0.5), Wraps::REPEAT);
         assert!((c.x - 1.0).abs() < 1e-6);
         assert!((c.y - 0.2158605).abs() < 1e-4, "{}", c.y); // sRGB 128 is 21.6 % light
-        let lin = two_by_one(ColorSpace::Linear).sample_bilinear(Vec2::new(0.75, 0.5), false);
+        let lin =
+            two_by_one(ColorSpace::Linear).sample_bilinear(Vec2::new(0.75, 0.5), Wraps::REPEAT);
         assert!((lin.y - 128.0 / 255.0).abs() < 1e-6);
     }
 
@@ -448,8 +444,8 @@ mod tests {
             let loaded = ImageData::load(&path, ColorSpace::Srgb).unwrap();
             assert_eq!((loaded.width(), loaded.height()), (4, 2), "{name}");
             // Left half red, right half blue (JPEG within its loss).
-            let left = loaded.sample_bilinear(Vec2::new(0.125, 0.25), false);
-            let right = loaded.sample_bilinear(Vec2::new(0.875, 0.75), false);
+            let left = loaded.sample_bilinear(Vec2::new(0.125, 0.25), Wraps::REPEAT);
+            let right = loaded.sample_bilinear(Vec2::new(0.875, 0.75), Wraps::REPEAT);
             assert!(left.x > 0.8 && left.z < 0.1, "{name}: {left}");
             assert!(right.z > 0.8 && right.x < 0.1, "{name}: {right}");
         }
@@ -480,21 +476,21 @@ mod tests {
         for i in -40..40 {
             for j in -30..30 {
                 let uv = Vec2::new(i as f32 * 0.0731, j as f32 * 0.0917);
-                for clamp_v in [false, true] {
+                for clamp_v in [Wraps::REPEAT, CLAMP_V, Wraps::both(Wrap::Mirror)] {
                     let (cb, cf) = (
                         b.sample_bilinear(uv, clamp_v),
                         f.sample_bilinear(uv, clamp_v),
                     );
-                    assert_eq!(cb, cf, "uv {uv}, clamp_v {clamp_v}");
+                    assert_eq!(cb, cf, "uv {uv}, {clamp_v:?}");
                 }
             }
         }
         // Texel centres give the texels themselves, wrapped across the edges.
         let centre = |x: f32, y: f32| Vec2::new((x + 0.5) / 5.0, (y + 0.5) / 3.0);
-        let c = b.sample_bilinear(centre(-1.0, 3.0), false);
+        let c = b.sample_bilinear(centre(-1.0, 3.0), Wraps::REPEAT);
         assert_eq!(c, Color::new(200.0, 255.0, 124.0) / 255.0);
         // Clamped rows repeat the edge row instead.
-        let c = b.sample_bilinear(centre(4.0, 5.0), true);
+        let c = b.sample_bilinear(centre(4.0, 5.0), CLAMP_V);
         assert_eq!(c, Color::new(202.0, 115.0, 158.0) / 255.0);
     }
 
@@ -506,7 +502,7 @@ mod tests {
             ::image::DynamicImage::new_rgb32f(3, 0),
         ] {
             let tex = ImageData::from_owned(img, ColorSpace::Srgb);
-            for clamp_v in [false, true] {
+            for clamp_v in [Wraps::REPEAT, CLAMP_V, Wraps::both(Wrap::Mirror)] {
                 assert_eq!(
                     tex.sample_bilinear(Vec2::new(0.3, 0.7), clamp_v),
                     Color::ZERO
@@ -518,12 +514,12 @@ mod tests {
     #[test]
     fn bilinear_blends_between_texel_centres_and_wraps() {
         let img = two_by_one(ColorSpace::Linear);
-        let mid = img.sample_bilinear(Vec2::new(0.5, 0.5), false);
+        let mid = img.sample_bilinear(Vec2::new(0.5, 0.5), Wraps::REPEAT);
         assert!((mid.x - 0.5).abs() < 1e-6);
         // At u = 0 the left texel blends with the right one wrapped round.
-        let edge = img.sample_bilinear(Vec2::new(0.0, 0.5), false);
+        let edge = img.sample_bilinear(Vec2::new(0.0, 0.5), Wraps::REPEAT);
         assert!((edge.x - 0.5).abs() < 1e-6);
-        let wrapped = img.sample_bilinear(Vec2::new(1.25, 0.5), false);
+        let wrapped = img.sample_bilinear(Vec2::new(1.25, 0.5), Wraps::REPEAT);
         assert!(wrapped.x.abs() < 1e-6);
     }
 
@@ -551,7 +547,7 @@ mod tests {
             Vec2::new(f32::MAX, f32::MAX),
             Vec2::new(f32::MIN, f32::MAX),
         ] {
-            for clamp_v in [false, true] {
+            for clamp_v in [Wraps::REPEAT, CLAMP_V, Wraps::both(Wrap::Mirror)] {
                 let c = img.sample_bilinear(uv, clamp_v);
                 assert!(c.is_finite() && c.min_element() >= 0.0, "{uv}: {c}");
             }

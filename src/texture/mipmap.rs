@@ -2,7 +2,7 @@
 //! trilinear lookup that reads the level whose texels are as large as a pixel's footprint,
 //! so a far or slanted image is its average there instead of a scatter of single texels.
 
-use super::ImageData;
+use super::{ImageData, Wraps};
 use crate::math::{Color, Vec2};
 
 /// The levels below `img`, finest first: each half the size of the one above, rounded up,
@@ -37,7 +37,7 @@ pub fn pyramid(img: &ImageData) -> Vec<ImageData> {
 /// footprint's larger side, twice over (pbrt's width); between levels the two nearest are
 /// blended, each bilinearly (trilinear filtering). A footprint under a texel reads the image
 /// itself, bilinearly, as a point does.
-pub fn sample(img: &ImageData, uv: Vec2, duvdx: Vec2, duvdy: Vec2, clamp_v: bool) -> Color {
+pub fn sample(img: &ImageData, uv: Vec2, duvdx: Vec2, duvdy: Vec2, wrap: Wraps) -> Color {
     let (w, h) = (img.width() as f32, img.height() as f32);
     let width = 2.0
         * (duvdx.x.abs() * w)
@@ -47,17 +47,17 @@ pub fn sample(img: &ImageData, uv: Vec2, duvdx: Vec2, duvdy: Vec2, clamp_v: bool
     let coarser = img.coarser();
     // Also where the width is NaN (a footprint that lost its way): the plain lookup.
     if width.is_nan() || width <= 1.0 || coarser.is_empty() {
-        return img.sample_bilinear(uv, clamp_v);
+        return img.sample_bilinear(uv, wrap);
     }
     let lod = width.log2().min(coarser.len() as f32);
     let k = lod.floor() as usize;
     let level = |i: usize| if i == 0 { img } else { &coarser[i - 1] };
-    let fine = level(k).sample_bilinear(uv, clamp_v);
+    let fine = level(k).sample_bilinear(uv, wrap);
     let f = lod - k as f32;
     if f == 0.0 || k == coarser.len() {
         return fine;
     }
-    fine.lerp(level(k + 1).sample_bilinear(uv, clamp_v), f)
+    fine.lerp(level(k + 1).sample_bilinear(uv, wrap), f)
 }
 
 #[cfg(test)]
@@ -102,25 +102,31 @@ mod tests {
         // Under a texel: the image itself.
         let small = Vec2::new(0.2 / 64.0, 0.0);
         assert_eq!(
-            sample(&img, uv, small, small.perp(), false),
-            img.sample_bilinear(uv, false)
+            sample(&img, uv, small, small.perp(), Wraps::REPEAT),
+            img.sample_bilinear(uv, Wraps::REPEAT)
         );
         // Eight texels wide: the checker has averaged out to grey.
         let big = Vec2::new(8.0 / 64.0, 0.0);
-        let c = sample(&img, uv, big, big.perp(), false);
+        let c = sample(&img, uv, big, big.perp(), Wraps::REPEAT);
         assert!((c - Color::splat(0.5)).abs().max_element() < 3e-3, "{c}");
         // The longer side decides, whichever pixel direction it lies along.
-        let c = sample(&img, uv, Vec2::ZERO, Vec2::new(0.0, 8.0 / 64.0), false);
+        let c = sample(
+            &img,
+            uv,
+            Vec2::ZERO,
+            Vec2::new(0.0, 8.0 / 64.0),
+            Wraps::REPEAT,
+        );
         assert!((c - Color::splat(0.5)).abs().max_element() < 3e-3, "{c}");
         // A footprint past the whole image reads the last level.
         let huge = Vec2::new(100.0, 0.0);
         let top = img.coarser().last().unwrap().texel(0, 0);
-        assert_eq!(sample(&img, uv, huge, huge, false), top);
+        assert_eq!(sample(&img, uv, huge, huge, Wraps::REPEAT), top);
         // NaN reads the point.
         let nan = Vec2::splat(f32::NAN);
         assert_eq!(
-            sample(&img, uv, nan, nan, false),
-            img.sample_bilinear(uv, false)
+            sample(&img, uv, nan, nan, Wraps::REPEAT),
+            img.sample_bilinear(uv, Wraps::REPEAT)
         );
     }
 
@@ -131,9 +137,9 @@ mod tests {
         // A width of 2^1.5 texels: halfway between levels 1 and 2.
         let d = Vec2::new(2f32.powf(1.5) / 2.0 / 64.0, 0.0);
         let want = img.coarser()[0]
-            .sample_bilinear(uv, false)
-            .lerp(img.coarser()[1].sample_bilinear(uv, false), 0.5);
-        let got = sample(&img, uv, d, Vec2::ZERO, false);
+            .sample_bilinear(uv, Wraps::REPEAT)
+            .lerp(img.coarser()[1].sample_bilinear(uv, Wraps::REPEAT), 0.5);
+        let got = sample(&img, uv, d, Vec2::ZERO, Wraps::REPEAT);
         assert!((got - want).abs().max_element() < 1e-5, "{got} {want}");
     }
 }

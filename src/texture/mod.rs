@@ -6,11 +6,13 @@ mod antialias;
 mod image;
 mod mapping;
 mod mipmap;
+mod wrap;
 
 pub use image::{
     ColorSpace, ImageData, ImageLoadError, decode, in_guarded_decoder, srgb_to_linear,
 };
 pub use mapping::{Footprint, Mapping, TexturePoint};
+pub use wrap::{Wrap, Wraps};
 
 use crate::math::{Color, Vec2};
 use std::sync::Arc;
@@ -20,7 +22,7 @@ use std::sync::Arc;
 pub enum Pattern {
     /// One colour everywhere.
     Solid(Color),
-    /// An image, bilinearly filtered, repeated outside `[0, 1]`.
+    /// An image, bilinearly filtered; outside `[0, 1]` as its texture's `wrap` says.
     Image(Arc<ImageData>),
     /// Squares of side `size`: `even` where `floor(u / size) + floor(v / size)` is even.
     Checker {
@@ -50,6 +52,9 @@ pub struct Texture {
     pub pattern: Pattern,
     /// Where it goes.
     pub mapping: Mapping,
+    /// An image's wrap modes outside `[0, 1]` (a spherical mapping clamps v at the poles
+    /// whatever this says).
+    pub wrap: Wraps,
 }
 
 impl Texture {
@@ -58,6 +63,7 @@ impl Texture {
         Texture {
             pattern: Pattern::Solid(c),
             mapping: Mapping::Uv,
+            wrap: Wraps::REPEAT,
         }
     }
 
@@ -91,7 +97,7 @@ impl Texture {
             _ if p.area().is_some() => self.eval_filtered(p),
             Pattern::Image(img) => {
                 let uv = self.mapping.uv(p);
-                img.sample_bilinear(uv, self.mapping.clamps_v())
+                img.sample_bilinear(uv, self.wraps())
             }
             Pattern::Checker { even, odd, size } => {
                 let uv = self.mapping.uv(p);
@@ -112,6 +118,18 @@ impl Texture {
         }
     }
 
+    /// The image's wrap modes as read through its mapping (a spherical one clamps v).
+    #[inline]
+    fn wraps(&self) -> Wraps {
+        match self.mapping.clamps_v() {
+            true => Wraps {
+                v: Wrap::Clamp,
+                ..self.wrap
+            },
+            false => self.wrap,
+        }
+    }
+
     /// [`Texture::eval`] over a footprint.
     fn eval_filtered(&self, p: &TexturePoint) -> Color {
         let (uv, dx, dy) = self.mapping.uv_footprint(p);
@@ -121,7 +139,7 @@ impl Texture {
         let radius = Vec2::new(dx.x.abs().max(dy.x.abs()), dx.y.abs().max(dy.y.abs()));
         match &self.pattern {
             Pattern::Solid(c) => *c,
-            Pattern::Image(img) => mipmap::sample(img, uv, dx, dy, self.mapping.clamps_v()),
+            Pattern::Image(img) => mipmap::sample(img, uv, dx, dy, self.wraps()),
             Pattern::Checker { even, odd, size } => {
                 let r = radius / *size;
                 let w = antialias::square_wave(uv.x / size, r.x)
@@ -212,6 +230,7 @@ mod tests {
                 crate::math::Vec3A::X,
                 crate::math::Vec3A::Z,
             ),
+            wrap: Wraps::REPEAT,
         };
         for (x, z) in [
             (0.0f32, -50.0f32),
@@ -234,6 +253,7 @@ mod tests {
                 width: 0.5,
             },
             mapping: Mapping::Uv,
+            wrap: Wraps::REPEAT,
         };
         let at = |u: f32| t.eval(&TexturePoint::with_uv(Vec2::new(u, 0.0)));
         assert_eq!(at(0.25), Color::ONE);
@@ -251,6 +271,7 @@ mod tests {
                 size: 0.5,
             },
             mapping: Mapping::Uv,
+            wrap: Wraps::REPEAT,
         };
         let stripes = Texture {
             pattern: Pattern::Stripes {
@@ -259,6 +280,7 @@ mod tests {
                 width: 0.5,
             },
             mapping: Mapping::Uv,
+            wrap: Wraps::REPEAT,
         };
         let at = |t: &Texture, uv: Vec2, d: f32| {
             let f = Footprint {

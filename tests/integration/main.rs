@@ -13,6 +13,7 @@ mod environment;
 mod explain;
 mod filtering;
 mod gltf;
+mod khronos;
 mod meshes;
 mod optics;
 mod path;

@@ -120,6 +120,8 @@ fn golden_maps_and_gltf_scenes() {
     // transform) under the sky. Both path traced, as the scenes ask.
     check_golden_as_asked("scenes/detail.toml", "detail-96", 96, 54, 4);
     check_golden_as_asked("scenes/gltf.toml", "gltf-96", 96, 54, 4);
+    // Two of Khronos's sample models: texture transforms, clamped samplers, a GLB.
+    check_golden_as_asked("scenes/khronos.toml", "khronos-96", 96, 54, 4);
 }
 
 #[test]

@@ -358,6 +358,7 @@ color = [1, 0, 0]
 type = "image"
 file = "photo.png"
 color_space = "linear"
+wrap = "mirror"
 mapping = { type = "spherical", center = [0, 1, 0], rotate = [0, 90, 0] }
 [textures.photo2]
 type = "image"
@@ -639,6 +640,7 @@ fn the_every_key_scene_has_every_key_and_type_of_the_schema() {
         "perspective",
         "clamp",
         "reinhard",
+        "repeat",
     ];
     let missing: Vec<_> = consts
         .iter()

@@ -12,6 +12,24 @@ pub struct TextureRef {
     /// KHR_texture_transform as `uv' = m[0] u + m[1] v + m[2]` (glTF's uv, `v` down the
     /// image, as snell's), or `None`.
     pub transform: Option<[[f32; 2]; 3]>,
+    /// The sampler's wrap modes (glTF's default: repeat).
+    pub wrap: crate::texture::Wraps,
+}
+
+/// A glTF sampler's wrap modes.
+fn wraps(t: &gltf::Texture) -> crate::texture::Wraps {
+    use crate::texture::Wrap;
+    use gltf::texture::WrappingMode as W;
+    let mode = |m: W| match m {
+        W::ClampToEdge => Wrap::Clamp,
+        W::MirroredRepeat => Wrap::Mirror,
+        W::Repeat => Wrap::Repeat,
+    };
+    let s = t.sampler();
+    crate::texture::Wraps {
+        u: mode(s.wrap_s()),
+        v: mode(s.wrap_t()),
+    }
 }
 
 /// How a material's alpha is read (glTF's `alphaMode`).
@@ -108,6 +126,7 @@ pub(super) fn read(m: &gltf::Material) -> PbrMaterial {
                 .and_then(|t| t.tex_coord())
                 .unwrap_or(i.tex_coord()),
             transform: t.map(|t| uv_transform(t.offset(), t.rotation(), t.scale())),
+            wrap: wraps(&i.texture()),
         }
     };
     let normal = m.normal_texture();
@@ -126,6 +145,7 @@ pub(super) fn read(m: &gltf::Material) -> PbrMaterial {
             image: n.texture().source().index(),
             texcoord: n.tex_coord(),
             transform: json_transform(n.extension_value("KHR_texture_transform")),
+            wrap: wraps(&n.texture()),
         }),
         emissive: m.emissive_factor().map(|e| e * strength),
         emissive_texture: m.emissive_texture().map(info),

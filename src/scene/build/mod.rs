@@ -13,7 +13,7 @@ use crate::light::{Light, LightSampler};
 use crate::material::detail::SurfaceDetail;
 use crate::math::{Color, Frame, Transform, Vec3, Vec3A};
 use crate::sampler::SamplerKind;
-use crate::texture::{ColorSpace, Mapping, Pattern, Texture};
+use crate::texture::{ColorSpace, Mapping, Pattern, Texture, Wrap, Wraps};
 use material::MaterialTextures;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -982,6 +982,7 @@ impl Builder<'_> {
             TextureDef::Image {
                 file,
                 color_space,
+                wrap,
                 mapping,
             } => {
                 let mapping = self.mapping(mapping, &path.key("mapping"));
@@ -1004,7 +1005,16 @@ impl Builder<'_> {
                         Pattern::Solid(Color::ONE)
                     }
                 };
-                Texture { pattern, mapping }
+                let wrap = match wrap {
+                    WrapDef::Repeat => Wrap::Repeat,
+                    WrapDef::Clamp => Wrap::Clamp,
+                    WrapDef::Mirror => Wrap::Mirror,
+                };
+                Texture {
+                    pattern,
+                    mapping,
+                    wrap: Wraps::both(wrap),
+                }
             }
             TextureDef::Checker {
                 even,
@@ -1018,6 +1028,7 @@ impl Builder<'_> {
                     size: self.positive(*size, &path.key("size")),
                 },
                 mapping: self.mapping(mapping, &path.key("mapping")),
+                wrap: Wraps::REPEAT,
             },
             TextureDef::Stripes {
                 a,
@@ -1031,6 +1042,7 @@ impl Builder<'_> {
                     width: self.positive(*width, &path.key("width")),
                 },
                 mapping: self.mapping(mapping, &path.key("mapping")),
+                wrap: Wraps::REPEAT,
             },
         }
     }

@@ -261,6 +261,10 @@ pub enum TextureDef {
         /// uses as a normal or bump map).
         #[serde(default)]
         color_space: Option<ColorSpaceDef>,
+        /// What it shows outside `[0, 1]` on both axes: `repeat` (the default), `clamp`
+        /// (its edges stretched) or `mirror`.
+        #[serde(default)]
+        wrap: WrapDef,
         /// Placement.
         #[serde(default)]
         mapping: MappingDef,
@@ -306,6 +310,19 @@ pub enum ColorSpaceDef {
     Srgb,
     /// Linear values.
     Linear,
+}
+
+/// An image texture's `wrap`.
+#[derive(Clone, Copy, Debug, Default, Deserialize, Serialize, JsonSchema, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+pub enum WrapDef {
+    /// The image again, and again.
+    #[default]
+    Repeat,
+    /// The edge texels, stretched.
+    Clamp,
+    /// The image mirrored every other time.
+    Mirror,
 }
 
 /// `mapping = { type = "...", ... }`.

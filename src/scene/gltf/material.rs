@@ -19,7 +19,7 @@ use crate::material::plastic::Plastic;
 use crate::material::{ColorParam, Emission, Material, Scalar};
 use crate::math::{Color, Vec2};
 use crate::mesh_file::gltf::{Alpha, PbrMaterial, TextureRef};
-use crate::texture::{ColorSpace, ImageData, Mapping, Pattern, Texture};
+use crate::texture::{ColorSpace, ImageData, Mapping, Pattern, Texture, Wraps};
 use std::collections::HashMap;
 use std::sync::Arc;
 
@@ -110,6 +110,7 @@ pub(in crate::scene) fn pbr_material(
         textures.push(Texture {
             pattern,
             mapping: mapping(t),
+            wrap: t.map_or(Wraps::REPEAT, |t| t.wrap),
         });
         textures.len() - 1
     };
