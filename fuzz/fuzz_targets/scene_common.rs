@@ -2,7 +2,7 @@
 // stays one file that cargo fuzz can build on its own).
 
 use snell::integrator::{Integrator, RayStats, Whitted};
-use snell::scene::{Format, load_str};
+use snell::scene::{Format, load_str, load_str_frame};
 use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
 
@@ -42,6 +42,14 @@ fn check_scene(data: &[u8], format: Format, name: &str) {
         }
         Ok(mut scene) => {
             let _ = scene.summary();
+            // An animation's other frames put its keys' curves into the scene: the middle
+            // one and the last build (or are refused) without panicking too.
+            if let Some(a) = scene.animation {
+                for frame in [a.frames / 2, a.frames - 1] {
+                    let _ = load_str_frame(text, Path::new(name), empty_dir(), format, frame)
+                        .map(|s| s.summary());
+                }
+            }
             // Whitted splits a ray at every glass surface, so the work grows as 2^depth: keep
             // the depth small so each input stays quick.
             scene.settings.max_depth = scene.settings.max_depth.min(5);
@@ -54,7 +62,7 @@ fn check_scene(data: &[u8], format: Format, name: &str) {
             ] {
                 let ray = scene.camera.ray(x, y, w, h);
                 let _ = Whitted.radiance(&scene, &ray, &mut rays);
-                let _ = scene.closest_hit_with_uv(&ray, f32::INFINITY);
+                let _ = scene.closest_hit_with_uv(&ray, f32::INFINITY, snell::scene::Skip::NONE);
             }
         }
     }

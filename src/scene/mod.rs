@@ -14,7 +14,9 @@ mod meshes;
 mod mtl;
 
 pub use assets::AssetCache;
-pub use build::{Animation, MAX_FRAMES, MAX_MAGNITUDE, load, load_frame, load_str, load_with};
+pub use build::{
+    Animation, MAX_FRAMES, MAX_MAGNITUDE, load, load_frame, load_str, load_str_frame, load_with,
+};
 pub use detail::UvFrame;
 pub use diag::{DocPath, Format, Problem, SceneDiagnostic, SceneError, Seg, did_you_mean};
 pub use footprint::{RayDifferentials, SurfacePatch};

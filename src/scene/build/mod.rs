@@ -80,16 +80,20 @@ pub fn load_str(
     base_dir: &Path,
     format: Format,
 ) -> Result<Scene, SceneError> {
+    load_str_frame(text, file, base_dir, format, 0)
+}
+
+/// As [`load_str`], the scene at `frame` of its `[animation]`.
+pub fn load_str_frame(
+    text: &str,
+    file: &Path,
+    base_dir: &Path,
+    format: Format,
+    frame: u32,
+) -> Result<Scene, SceneError> {
     let mut assets = AssetCache::default();
-    build(
-        text,
-        file,
-        base_dir,
-        format,
-        &Limits::default(),
-        0,
-        &mut assets,
-    )
+    let limits = Limits::default();
+    build(text, file, base_dir, format, &limits, frame, &mut assets)
 }
 
 fn build(
