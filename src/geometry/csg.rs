@@ -1,6 +1,6 @@
 //! Constructive solid geometry: the union, intersection or difference of solids (spheres,
-//! boxes, capped cylinders and cones, tori, and such combinations nested), each placed by
-//! its own transform.
+//! boxes, capped cylinders and cones, tori, closed meshes, and such combinations nested),
+//! each placed by its own transform.
 //!
 //! The tree is flattened into its leaves, each remembering whether it is subtracted (an
 //! odd number of times): its surface then faces the other way on the result. A ray finds
@@ -35,7 +35,7 @@ pub enum CsgNode {
 /// A solid of the tree.
 #[derive(Clone, Debug, PartialEq)]
 pub struct CsgLeaf {
-    /// A closed solid (not a mesh, a flat shape or an open cylinder or cone).
+    /// A closed solid (not a flat shape, an open cylinder or cone, or an open mesh).
     pub shape: Shape,
     /// Its placement within the combination.
     pub transform: Option<Transform>,
@@ -55,8 +55,21 @@ pub struct Csg {
     pub leaves: Vec<CsgLeaf>,
 }
 
-/// Most crossings of one solid along one ray (a torus has four).
+/// Most crossings of one analytic solid along one ray (a torus has four).
 const MAX_CROSSINGS: usize = 8;
+
+/// Most crossings of one mesh along one ray.
+const MAX_MESH_CROSSINGS: usize = 1024;
+
+/// A hit's `prim` on a combination: its solid's index in the top 8 bits, the solid's own
+/// `prim` (a mesh's triangle) below.
+const LEAF_SHIFT: u32 = 24;
+
+/// Most solids in one combination (the index must fit the top bits of `prim`).
+pub const MAX_CSG_LEAVES: usize = 1 << (32 - LEAF_SHIFT);
+
+/// Most triangles of a mesh in a combination (its `prim` must fit below the solid's index).
+pub const MAX_CSG_MESH_TRIANGLES: usize = 1 << LEAF_SHIFT;
 
 impl CsgLeaf {
     /// A solid of the tree (a bounded shape).
@@ -95,7 +108,11 @@ impl CsgLeaf {
 
     fn contains(&self, p: Vec3A) -> bool {
         let p = self.transform.as_ref().map_or(p, |t| t.point_to_object(p));
-        self.shape.contains(p)
+        match &self.shape {
+            // A mesh is a solid only here, where it was checked to be closed.
+            Shape::Mesh(m) => m.encloses(p),
+            s => s.contains(p),
+        }
     }
 
     /// Every crossing of this solid with `0 < t < t_max`, nearest first.
@@ -109,7 +126,11 @@ impl CsgLeaf {
             return;
         }
         let mut from = 0.0f32;
-        for _ in 0..MAX_CROSSINGS {
+        let most = match self.shape {
+            Shape::Mesh(_) => MAX_MESH_CROSSINGS,
+            _ => MAX_CROSSINGS,
+        };
+        for _ in 0..most {
             let start = local.at(from);
             let Some(h) = self
                 .shape
@@ -146,8 +167,14 @@ impl Csg {
         }
     }
 
+    /// The solid a hit's `prim` names.
+    #[inline]
+    pub fn leaf_of(prim: u32) -> usize {
+        (prim >> LEAF_SHIFT) as usize
+    }
+
     /// The nearest crossing of the result's surface with `0 < t < t_max`: `prim` names the
-    /// leaf, `part` is the leaf's own.
+    /// leaf (see [`Csg::leaf_of`]) and holds the leaf's own, `part` is the leaf's own.
     pub fn intersect(&self, ray: &Ray, t_max: f32) -> Option<ShapeHit> {
         let mut inside: Vec<bool> = self.leaves.iter().map(|l| l.contains(ray.origin)).collect();
         let mut events: Vec<(f32, usize, ShapeHit)> = vec![];
@@ -166,7 +193,7 @@ impl Csg {
                 return Some(ShapeHit {
                     t,
                     part: h.part,
-                    prim: i as u32,
+                    prim: ((i as u32) << LEAF_SHIFT) | h.prim,
                     bary: h.bary,
                 });
             }
@@ -177,9 +204,13 @@ impl Csg {
 
     /// The surface at a hit: the leaf's, facing out of the result.
     pub fn surface(&self, p: Vec3A, hit: &ShapeHit, want_uv: bool) -> Surface {
-        let leaf = &self.leaves[hit.prim as usize];
+        let leaf = &self.leaves[Self::leaf_of(hit.prim)];
         let lp = leaf.transform.as_ref().map_or(p, |t| t.point_to_object(p));
-        let s = leaf.shape.surface(lp, hit, want_uv);
+        let own = ShapeHit {
+            prim: hit.prim & ((1 << LEAF_SHIFT) - 1),
+            ..*hit
+        };
+        let s = leaf.shape.surface(lp, &own, want_uv);
         let (point, normal) = match &leaf.transform {
             None => (s.point, s.normal),
             Some(t) => (

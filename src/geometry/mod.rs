@@ -16,7 +16,7 @@ mod torus;
 mod triangle;
 
 pub use cone::Cone;
-pub use csg::{Csg, CsgLeaf, CsgNode, CsgOp};
+pub use csg::{Csg, CsgLeaf, CsgNode, CsgOp, MAX_CSG_LEAVES, MAX_CSG_MESH_TRIANGLES};
 pub use cuboid::Cuboid;
 pub use cylinder::Cylinder;
 pub(crate) use cylinder::angle_u;

@@ -261,7 +261,7 @@ impl Object {
             // A combination's solids may each have their own: `prim` names the solid.
             Shape::Csg(_) if !self.slot_materials.is_empty() => self
                 .slot_materials
-                .get(hit.prim as usize)
+                .get(crate::geometry::Csg::leaf_of(hit.prim))
                 .copied()
                 .unwrap_or(self.material),
             _ => self.material,

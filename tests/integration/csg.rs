@@ -145,3 +145,88 @@ fn the_solids_scene_builds_cleanly() {
         .count();
     assert_eq!(csg, 2);
 }
+
+/// The dented box of `DENTED` with a closed mesh cube (tests/data/csg/cube.obj, the same
+/// box) in place of the analytic one.
+fn dented_with_mesh() -> Scene {
+    let dir = repo("tests/data/csg");
+    let text = DENTED.replace(
+        r#"{ type = "box", min = [-1, -1, -1], max = [1, 1, 1] },"#,
+        r#"{ type = "mesh", file = "cube.obj" },"#,
+    );
+    assert_ne!(text, DENTED);
+    load_str(&text, &dir.join("t.toml"), &dir, Format::Toml).unwrap_or_else(|e| panic!("{e}"))
+}
+
+#[test]
+fn a_closed_mesh_is_a_solid_with_the_same_hits_as_the_box_it_models() {
+    let analytic = load(DENTED);
+    let mesh = dented_with_mesh();
+    assert!(mesh.warnings.is_empty(), "{:?}", mesh.warnings);
+    // Rays from every side (and from inside the box, where the mesh's inside is found by
+    // counting crossings), at scattered points: the same hit, material and normal.
+    let mut rng = 0x2545_f491_4f6c_dd1du64;
+    let mut next = || {
+        rng ^= rng << 13;
+        rng ^= rng >> 7;
+        rng ^= rng << 17;
+        (rng >> 40) as f32 / (1u64 << 24) as f32
+    };
+    let mut hits = 0;
+    for i in 0..2000 {
+        let origin = if i % 4 == 0 {
+            // Inside the placed box (from -1 to 3 in y after the object's transform).
+            Vec3A::new(3.6 * next() - 1.8, 4.0 * next() - 1.0, 3.6 * next() - 1.8)
+        } else {
+            Vec3A::new(
+                16.0 * next() - 8.0,
+                16.0 * next() - 7.0,
+                16.0 * next() - 8.0,
+            )
+        };
+        let target = Vec3A::new(4.0 * next() - 2.0, 4.0 * next() - 1.0, 4.0 * next() - 2.0);
+        let Some(dir) = (target - origin).try_normalize() else {
+            continue;
+        };
+        let ray = Ray::new(origin, dir);
+        let a = analytic.closest_hit_with_uv(&ray, f32::INFINITY, Skip::NONE);
+        let b = mesh.closest_hit_with_uv(&ray, f32::INFINITY, Skip::NONE);
+        match (a, b) {
+            (None, None) => {}
+            (Some(a), Some(b)) => {
+                hits += 1;
+                assert!(
+                    (a.t - b.t).abs() < 1e-3 * a.t.max(1.0),
+                    "{ray:?}: {} vs {}",
+                    a.t,
+                    b.t
+                );
+                assert_eq!(a.material, b.material, "{ray:?}");
+                // Edges and corners may differ in which face's normal they take.
+                let p = ray.at(a.t);
+                let on_edge = [p.x.abs() - 2.0, p.y - 3.0, p.y + 1.0, p.z.abs() - 2.0]
+                    .iter()
+                    .filter(|d| d.abs() < 1e-2)
+                    .count()
+                    > 1;
+                if !on_edge {
+                    assert!(
+                        (a.normal - b.normal).length() < 1e-3,
+                        "{ray:?}: {} vs {}",
+                        a.normal,
+                        b.normal
+                    );
+                }
+            }
+            (a, b) => panic!("{ray:?}: {:?} against {:?}", a.map(|h| h.t), b.map(|h| h.t)),
+        }
+    }
+    assert!(hits > 500, "{hits} rays hit");
+    // A point inside the placed box but in the dent is outside the result, both ways.
+    for s in [&analytic, &mesh] {
+        let inside = |p: [f32; 3]| s.objects[0].contains(Vec3A::from_array(p));
+        assert!(inside([0.0, 0.0, 0.0]));
+        assert!(!inside([0.0, 2.9, 0.0]), "the dent");
+        assert!(!inside([2.5, 0.0, 0.0]));
+    }
+}

@@ -3,6 +3,7 @@
 //! watertight triangle tests, and per-vertex normals and uvs. A mesh is shared
 //! (`Arc`) by every object that places it, so a thousand instances cost one copy.
 
+mod solid;
 mod tangents;
 
 use super::triangle::{BlockRay, LANES, TriangleBlock};

@@ -3,10 +3,14 @@
 //! subtracted, and the material it names (or its parents', or the object's).
 
 use super::Builder;
-use crate::geometry::{Csg, CsgLeaf, CsgNode, CsgOp};
+use crate::geometry::{
+    Csg, CsgLeaf, CsgNode, CsgOp, MAX_CSG_LEAVES, MAX_CSG_MESH_TRIANGLES, Shape,
+};
 use crate::math::Transform;
+use crate::mesh_file;
 use crate::scene::diag::DocPath;
-use crate::scene::format::{CsgDef, CsgOpDef, ObjectDef};
+use crate::scene::format::{CsgDef, CsgOpDef, MeshObjectDef, ObjectDef};
+use std::sync::Arc;
 
 /// Combinations nested deeper than this are refused.
 const MAX_DEPTH: usize = 32;
@@ -29,7 +33,88 @@ impl Builder<'_> {
             materials: &mut materials,
         };
         let root = self.csg_node(d, path, None, false, None, &mut walk, 0)?;
+        if leaves.len() > MAX_CSG_LEAVES {
+            self.error(
+                path.key("shapes"),
+                format!(
+                    "the combination has {} solids, more than the {MAX_CSG_LEAVES} one may have",
+                    leaves.len()
+                ),
+            );
+            return None;
+        }
         Some((Csg { root, leaves }, materials))
+    }
+
+    /// A mesh file as a solid of a combination: read (OBJ or PLY, its materials not
+    /// used), and refused unless its surface is closed.
+    fn csg_mesh(&mut self, d: &MeshObjectDef, at: &DocPath) -> Option<Shape> {
+        let Some(file) = &d.file else {
+            self.error_help(
+                at.clone(),
+                "a mesh in a combination is given by its `file`",
+                "name the OBJ or PLY file: file = \"solid.obj\"",
+            );
+            return None;
+        };
+        for (given, key) in [(d.mesh.is_some(), "mesh"), (d.lights.is_some(), "lights")] {
+            if given {
+                self.error(
+                    at.key(key),
+                    format!("`{key}` is not read for a mesh in a combination"),
+                );
+            }
+        }
+        let full = self.base_dir.join(file);
+        self.files.push(full.clone());
+        let gltf = full
+            .extension()
+            .is_some_and(|e| e.eq_ignore_ascii_case("gltf") || e.eq_ignore_ascii_case("glb"));
+        if gltf {
+            self.error_help(
+                at.key("file"),
+                "a combination takes OBJ and PLY meshes, not glTF files",
+                "export the solid as OBJ or PLY",
+            );
+            return None;
+        }
+        let data = match mesh_file::load(&full) {
+            Ok(d) => d,
+            Err(e) => {
+                self.error_help(
+                    at.key("file"),
+                    format!("cannot load mesh: {e}"),
+                    "paths are relative to the scene file's folder",
+                );
+                return None;
+            }
+        };
+        for w in &data.warnings {
+            self.warnings.push(format!("{file}: {w}"));
+        }
+        let (mesh, _) = self.build_mesh(file, data, d.smooth, "", &at.key("file"))?;
+        if mesh.triangle_count() > MAX_CSG_MESH_TRIANGLES {
+            self.error(
+                at.key("file"),
+                format!(
+                    "{file} has {} triangles, more than the {MAX_CSG_MESH_TRIANGLES} a mesh in a combination may have",
+                    mesh.triangle_count()
+                ),
+            );
+            return None;
+        }
+        let open = mesh.open_edges();
+        if open > 0 {
+            self.error_help(
+                at.key("file"),
+                format!(
+                    "{file} is not closed: {open} of its edges border one triangle (or more than two), so it has no inside to combine"
+                ),
+                "a combination takes closed (watertight) meshes: close the holes in a modeller",
+            );
+            return None;
+        }
+        Some(Shape::Mesh(Arc::new(mesh)))
     }
 
     #[allow(clippy::too_many_arguments)]
@@ -111,9 +196,13 @@ impl Builder<'_> {
                         })
                     }
                 }
+                ObjectDef::Mesh(m) => self.csg_mesh(m, &at).map(|shape| {
+                    walk.leaves.push(CsgLeaf::new(shape, placed, neg));
+                    walk.materials.push(mat);
+                    CsgNode::Leaf(walk.leaves.len() - 1)
+                }),
                 other => {
                     let kind = match other {
-                        ObjectDef::Mesh(_) => "mesh",
                         ObjectDef::Plane(_) => "plane",
                         ObjectDef::Disk(_) => "disk",
                         ObjectDef::Triangle(_) => "triangle",
@@ -122,7 +211,7 @@ impl Builder<'_> {
                     self.error_help(
                         at.key("type"),
                         format!("a {kind} is not a solid snell can combine"),
-                        "a combination takes spheres, boxes, capped cylinders and cones, tori, and combinations",
+                        "a combination takes spheres, boxes, capped cylinders and cones, tori, closed meshes, and combinations",
                     );
                     None
                 }
