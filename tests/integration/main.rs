@@ -13,6 +13,7 @@ mod environment;
 mod explain;
 mod filtering;
 mod gltf;
+mod groups;
 mod khronos;
 mod meshes;
 mod optics;

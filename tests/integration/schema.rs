@@ -528,6 +528,13 @@ lights = true
 [[objects]]
 type = "mesh"
 mesh = "statue"
+[[objects]]
+type = "group"
+group = "pair"
+material = "all"
+transform = { translate = [3, 0, 0] }
+[groups.pair]
+objects = [{ type = "sphere", radius = 0.5 }, { type = "sphere", center = [1, 0, 0], radius = 0.5, material = "all" }]
 [animation]
 frames = 48
 fps = 24

@@ -206,6 +206,7 @@ impl Builder<'_> {
                         ObjectDef::Plane(_) => "plane",
                         ObjectDef::Disk(_) => "disk",
                         ObjectDef::Triangle(_) => "triangle",
+                        ObjectDef::Group(_) => "group",
                         _ => "rectangle",
                     };
                     self.error_help(

@@ -14,6 +14,7 @@ use crate::material::detail::SurfaceDetail;
 use crate::math::{Color, Frame, Transform, Vec3, Vec3A};
 use crate::sampler::SamplerKind;
 use crate::texture::{ColorSpace, Mapping, Pattern, Texture, Wrap, Wraps};
+use group::Placing;
 use material::MaterialTextures;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -25,6 +26,7 @@ pub(super) mod camera;
 mod csg;
 mod emitters;
 mod environment;
+mod group;
 mod material;
 mod sky;
 
@@ -124,6 +126,10 @@ fn build(
     scene.frame = frame;
     b.files.sort();
     b.files.dedup();
+    // A group placed several times reports its objects' problems once.
+    let mut seen = std::collections::HashSet::new();
+    b.problems
+        .retain(|p| seen.insert((p.path.to_string(), p.message.clone())));
     if b.problems.is_empty() {
         scene.files = b.files;
         Ok(scene)
@@ -601,39 +607,44 @@ impl Builder<'_> {
         let named_meshes = self.named_meshes(&def.meshes, &root.key("meshes"), &mut palette);
         let mut used_meshes = vec![false; named_meshes.len()];
         let mut objects = vec![];
+        let mut used_groups = vec![false; def.groups.len()];
+        let mut placing = Placing {
+            named_meshes: &named_meshes,
+            used_meshes: &mut used_meshes,
+            palette: &mut palette,
+            user_materials,
+        };
         for (i, o) in def.objects.iter().enumerate() {
             let path = root.key("objects").index(i);
-            // One object, or one per mesh a glTF file's nodes place.
-            let parts: Vec<Option<LoadedMesh>> = match o {
-                ObjectDef::Mesh(m) => {
-                    match self.mesh_object(m, &path, &named_meshes, &mut used_meshes, &mut palette)
-                    {
-                        Some(parts) => parts.into_iter().map(Some).collect(),
-                        None => continue,
-                    }
+            let placed = match o {
+                ObjectDef::Group(g) => {
+                    self.group_placement(g, i, &path, &def.groups, &mut used_groups, &mut placing)
                 }
-                _ => vec![None],
+                _ => self.objects_of(o, i, &path, &mut placing, None),
             };
-            for mesh in parts {
-                if let Some(obj) = self.object(o, i, &path, &palette.names[..user_materials], mesh)
-                {
-                    if obj.slot_materials.is_empty() {
-                        used_materials[obj.material] = true;
-                    }
-                    // A combination's solids name scene materials (a mesh's slots are the
-                    // file's own, after them).
-                    if matches!(obj.shape, Shape::Csg(_)) {
-                        for &m in &obj.slot_materials {
-                            used_materials[m] = true;
-                        }
-                    }
-                    objects.push(obj);
+            for obj in placed {
+                if obj.slot_materials.is_empty() {
+                    used_materials[obj.material] = true;
                 }
+                // A combination's solids name scene materials (a mesh's slots are the
+                // file's own, after them).
+                if matches!(obj.shape, Shape::Csg(_)) {
+                    for &m in &obj.slot_materials {
+                        used_materials[m] = true;
+                    }
+                }
+                objects.push(obj);
             }
             if let ObjectDef::Mesh(m) = o
                 && m.lights == Some(true)
             {
                 lights.extend(self.gltf_object_lights(m, &path));
+            }
+        }
+        for (name, used) in def.groups.keys().zip(&used_groups) {
+            if !used {
+                self.warnings
+                    .push(format!("group `{name}` is defined but no object places it"));
             }
         }
         for ((name, _), used) in named_meshes.iter().zip(&used_meshes) {
@@ -1144,6 +1155,7 @@ impl Builder<'_> {
         path: &DocPath,
         material_names: &[String],
         mesh: Option<LoadedMesh>,
+        default_material: Option<&(String, DocPath)>,
     ) -> Option<Object> {
         let (name, material, transform) = d.common();
         let mut slot_materials = vec![];
@@ -1171,14 +1183,17 @@ impl Builder<'_> {
                 );
                 None
             }
-            (None, None) => {
-                self.error_help(
-                    path.clone(),
-                    "the object has no `material`",
-                    "add material = \"NAME\" naming one of [materials]",
-                );
-                None
-            }
+            (None, None) => match default_material {
+                Some((name, at)) => self.material_named(name, at, material_names),
+                None => {
+                    self.error_help(
+                        path.clone(),
+                        "the object has no `material`",
+                        "add material = \"NAME\" naming one of [materials]",
+                    );
+                    None
+                }
+            },
             (Some(material), _) => {
                 self.material_named(material, &path.key("material"), material_names)
             }
@@ -1382,7 +1397,7 @@ impl Builder<'_> {
                 }
             }
             // Meshes are resolved (loaded or found in the cache) before this is called.
-            ObjectDef::Mesh(_) => return None,
+            ObjectDef::Mesh(_) | ObjectDef::Group(_) => return None,
         };
         (self.problems.len() == before).then_some(shape)
     }

@@ -69,6 +69,9 @@ pub struct SceneFile {
     /// Shapes.
     #[serde(default)]
     pub objects: Vec<ObjectDef>,
+    /// Groups of objects defined once and placed by objects of type `group` (instancing).
+    #[serde(default)]
+    pub groups: BTreeMap<String, GroupDef>,
     /// Frames and keyframes: the camera, objects and lights moving over time (without it
     /// the scene is one frame, 0).
     pub animation: Option<AnimationDef>,
@@ -83,6 +86,15 @@ pub struct MeshDef {
     /// Vertex normals: `true` computes area-weighted ones when the file has none, `false`
     /// ignores the file's (flat shading); by default the file's are used when it has them.
     pub smooth: Option<bool>,
+}
+
+/// `[groups.NAME]`: objects placed together, as many times as objects of type `group`
+/// name it.
+#[derive(Debug, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct GroupDef {
+    /// The group's objects, in its own space (any type but `group`).
+    pub objects: Vec<ObjectDef>,
 }
 
 /// `[image]`.
@@ -617,6 +629,12 @@ object_defs! {
         /// glTF: whether the file's KHR_lights_punctual lights join the scene, placed as
         /// its meshes are (default false; only with `file`).
         lights: Option<bool>,
+    }
+    /// A group defined under `[groups]`, placed: its objects, each with its own transform
+    /// and then this one's; `material` is for those of its objects that name none.
+    Group(GroupObjectDef) {
+        /// Name of a group under `[groups]`.
+        group: String,
     }
 }
 
