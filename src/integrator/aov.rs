@@ -175,13 +175,12 @@ fn sample(scene: &Scene, x: u32, y: u32) -> Sample {
         Some(mut hit) => {
             let tex = hit.tex;
             scene.with_detail(&mut hit, &tex);
-            let m = scene.material_at(&hit);
             let uv = scene.texture_uv(&hit);
             Sample {
                 normal: hit.shading_normal,
                 uv,
                 depth: hit.t,
-                albedo: scene.textures[m.texture].eval(&hit.tex),
+                albedo: scene.base_color(&hit, &hit.tex),
                 object: hit.object as i32,
                 material: hit.material as i32,
                 bounces,

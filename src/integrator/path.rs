@@ -151,7 +151,7 @@ impl Path {
                 break;
             }
             scene.with_detail(&mut hit, &tex);
-            let base = scene.textures[m.texture].eval(&tex);
+            let base = scene.base_color(&hit, &tex);
             let frame = Frame::from_axis(hit.shading_normal);
             let v = Vertex {
                 bsdf: m.bsdf(&scene.textures, &tex, base),

@@ -293,7 +293,7 @@ impl Whitted {
                 Some((diff, p.dp, p.dn.map(|v| v * side)))
             })
         };
-        let base = scene.textures[m.texture].eval(tex);
+        let base = scene.base_color(hit, tex);
         let above = offset_ray_origin(hit.point, n);
         // Rays from `above` leave through the outside exactly when the ray came from there.
         let skip_above = scene.leaving(hit, entering);
@@ -535,7 +535,7 @@ impl Whitted {
             let transparency = m.terms_at(&scene.textures, &h.tex).transparency;
             let mut f = Color::splat(transparency * (1.0 - fresnel_dielectric(cos, 1.0 / m.ior)));
             if entering {
-                f *= scene.textures[m.texture].eval(&h.tex);
+                f *= scene.base_color(&h, &h.tex);
                 entered_at = h.point;
             } else {
                 f *= beer_lambert(m.absorption, (h.point - entered_at).length());

@@ -25,6 +25,8 @@ pub struct MeshData {
     /// Per-vertex tangents (glTF's `TANGENT`: unit `xyz`, the bitangent's sign in `w`),
     /// or empty.
     pub tangents: Vec<[f32; 4]>,
+    /// Per-vertex linear RGB colours (glTF's `COLOR_0`), or empty.
+    pub colors: Vec<[f32; 3]>,
     /// Triangles as indices into `positions` (and `normals` and `uvs`), in file winding order.
     pub triangles: Vec<[u32; 3]>,
     /// Per-triangle index into `materials`, or empty when no materials are used.
@@ -96,6 +98,7 @@ impl MeshData {
             normals,
             uvs,
             tangents,
+            colors,
             triangles,
             triangle_materials,
             materials,
@@ -128,6 +131,7 @@ impl MeshData {
             triangles,
             triangle_slots: triangle_materials.iter().map(|&m| m as u16).collect(),
             tangents,
+            colors: colors.into_iter().map(Vec3::from).collect(),
         };
         Ok((input, materials))
     }

@@ -587,6 +587,17 @@ impl Scene {
         }
     }
 
+    /// The base colour at a hit, read through `tex` (the hit's texture point, with its
+    /// footprint where known): the material's texture, times a mesh's vertex colours.
+    #[inline]
+    pub fn base_color(&self, hit: &Hit, tex: &TexturePoint) -> Color {
+        let c = self.textures[self.material_at(hit).texture].eval(tex);
+        match &self.objects[hit.object].shape {
+            Shape::Mesh(m) if m.has_colors() => c * m.color_at(hit.tex.point, hit.prim),
+            _ => c,
+        }
+    }
+
     /// The material at a hit.
     #[inline]
     pub fn material_at(&self, hit: &Hit) -> &Material {

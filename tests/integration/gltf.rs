@@ -379,3 +379,35 @@ fn a_glb_image_over_the_texture_limit_is_refused() {
     assert!(e.contains("more than the 1 a texture may have"), "{e}");
     assert!(snell::scene::load_with(&scene, &snell::scene::Limits::default()).is_ok());
 }
+
+/// COLOR_0 multiplies the base colour, blended between the corners by the point's
+/// barycentrics: read as Blender writes it (normalized unsigned shorts), linear.
+#[test]
+fn vertex_colours_tint_the_base_colour_between_the_corners() {
+    let scene = scene_with("vertex-colors.gltf", "");
+    assert!(scene.warnings.is_empty(), "{:?}", scene.warnings);
+    // The quad lies in z = 0 (the scene's camera is not used): red, green, blue and white
+    // at (-x -y), (+x -y), (+x +y), (-x +y); triangles (0, 1, 2) and (0, 2, 3).
+    let at = |x: f32, y: f32| {
+        let h = hit(&scene, [x, y, 5.0], [0.0, 0.0, -1.0]);
+        scene.base_color(&h, &h.tex)
+    };
+    // (0.25, -0.25) in the first triangle: a quarter red, half green, a quarter blue.
+    let c = at(0.25, -0.25);
+    assert!(
+        (c - Color::new(0.25, 0.5, 0.25)).abs().max_element() < 1e-4,
+        "{c}"
+    );
+    // (-0.25, 0.25) in the second: a quarter red, a quarter blue, half white.
+    let c = at(-0.25, 0.25);
+    assert!(
+        (c - Color::new(0.75, 0.5, 0.75)).abs().max_element() < 1e-4,
+        "{c}"
+    );
+    // Near a corner, that corner's colour.
+    let c = at(0.49, 0.49);
+    assert!(
+        (c - Color::new(0.0, 0.0, 1.0)).abs().max_element() < 0.02,
+        "{c}"
+    );
+}

@@ -3,6 +3,7 @@
 //! watertight triangle tests, and per-vertex normals and uvs. A mesh is shared
 //! (`Arc`) by every object that places it, so a thousand instances cost one copy.
 
+mod colors;
 mod solid;
 mod tangents;
 
@@ -34,6 +35,8 @@ pub struct MeshInput {
     /// Per-vertex tangents (unit `xyz`, the bitangent's sign in `w`: see `tangents`), or
     /// empty.
     pub tangents: Vec<[f32; 4]>,
+    /// Per-vertex linear RGB colours, which multiply the base colour, or empty.
+    pub colors: Vec<Vec3>,
 }
 
 /// A triangle mesh arranged for ray queries.
@@ -55,6 +58,8 @@ pub struct Mesh {
     filled: Vec<u8>,
     normals: Vec<Vec3>,
     uvs: Vec<Vec2>,
+    /// Per-vertex colours, or empty (see colors.rs).
+    colors: Vec<Vec3>,
     /// Material slot of each triangle, in BVH order, or empty.
     slots: Vec<u16>,
     /// Per corner of each triangle (`3 prim + k`), where a file gave them or a normal map
@@ -78,6 +83,7 @@ impl Mesh {
             triangles,
             triangle_slots,
             tangents,
+            colors,
         } = input;
         if triangles.len() > MAX_TRIANGLES {
             return Err(format!(
@@ -96,6 +102,13 @@ impl Mesh {
             return Err(format!(
                 "{} uvs for {} vertices",
                 uvs.len(),
+                positions.len()
+            ));
+        }
+        if !colors.is_empty() && colors.len() != positions.len() {
+            return Err(format!(
+                "{} colours for {} vertices",
+                colors.len(),
                 positions.len()
             ));
         }
@@ -228,6 +241,7 @@ impl Mesh {
                 filled: taken.iter().map(|&n| n as u8).collect(),
                 normals,
                 uvs,
+                colors,
                 slots,
                 tangents: corner_tangents,
                 bvh,
@@ -264,6 +278,7 @@ impl Mesh {
             + self.faces.len() * 12
             + self.normals.len() * 12
             + self.uvs.len() * 8
+            + self.colors.len() * 12
             + self.slots.len() * 2
             + self.filled.len()
             + self.tangents.get().map_or(0, |t| t.len() * 16)

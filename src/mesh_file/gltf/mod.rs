@@ -414,6 +414,7 @@ fn read_mesh(
     let mut normals: Vec<Option<[f32; 3]>> = vec![];
     let mut uvs: Vec<Option<[f32; 2]>> = vec![];
     let mut tangents: Vec<Option<[f32; 4]>> = vec![];
+    let mut colors: Vec<Option<[f32; 3]>> = vec![];
     for (p, prim) in mesh.primitives().enumerate() {
         let mode = prim.mode();
         if !matches!(
@@ -450,12 +451,13 @@ fn read_mesh(
             Some(it) => tangents.extend(it.map(Some)),
             None => tangents.extend(std::iter::repeat_n(None, n)),
         }
-        if prim.get(&gltf::mesh::Semantic::Colors(0)).is_some() {
-            warnings.push(format!(
-                "{name}: primitive {p} has vertex colours (COLOR_0), which snell does not read"
-            ));
+        // Linear RGB (glTF's colours are); alpha is not read.
+        match reader.read_colors(0) {
+            Some(it) => colors.extend(it.into_rgb_f32().map(Some)),
+            None => colors.extend(std::iter::repeat_n(None, n)),
         }
         // Attributes shorter or longer than the positions: each kept to the positions'.
+        colors.resize(base + n, None);
         normals.resize(base + n, None);
         uvs.resize(base + n, None);
         tangents.resize(base + n, None);
@@ -506,6 +508,17 @@ fn read_mesh(
     if uvs.iter().any(Option::is_some) {
         data.uvs = uvs.into_iter().map(|t| t.unwrap_or([0.0; 2])).collect();
     }
+    // A primitive without colours is white beside one with them (its base colour as is).
+    if colors.iter().any(Option::is_some) {
+        data.colors = colors
+            .into_iter()
+            .map(|c| {
+                c.map_or([1.0; 3], |c| {
+                    c.map(|x| if x.is_finite() { x.max(0.0) } else { 0.0 })
+                })
+            })
+            .collect();
+    }
     // Tangents only where every vertex has one (a mesh of primitives with and without
     // them gets MikkTSpace's throughout), each made unit with its sign kept to +-1.
     if !tangents.is_empty() && tangents.iter().all(Option::is_some) {
@@ -549,6 +562,17 @@ fn check_layouts(prim: &gltf::Primitive) -> Result<(), String> {
                 a.data_type()
             ));
         }
+    }
+    if let Some(a) = prim.get(&S::Colors(0))
+        && (!matches!(a.dimensions(), D::Vec3 | D::Vec4)
+            || !matches!(a.data_type(), T::F32 | T::U8 | T::U16))
+    {
+        return Err(format!(
+            "its COLOR_0 accessor {} is {:?} of {:?}, not Vec3 or Vec4 of F32, U8 or U16",
+            a.index(),
+            a.dimensions(),
+            a.data_type()
+        ));
     }
     if let Some(a) = prim.indices()
         && (a.dimensions() != D::Scalar || !matches!(a.data_type(), T::U8 | T::U16 | T::U32))

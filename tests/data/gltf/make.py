@@ -30,6 +30,9 @@ lit.gltf (+ cutout.bin): the quad with cameras and KHR_lights_punctual lights: c
 degrees about y (looking down -x; orthographic, ymag 2); a point light `Bulb` at
 (0, 2, 3) of 683 cd, red; a spot light `Spot` at (0, 0, 4) (inner 0.2, outer 0.4 rad, 1366 cd);
 a directional light `Sun` turned -90 degrees about x (shining down -y) of 1366 lux.
+vertex-colors.gltf (+ vertex-colors.bin): the quad with COLOR_0 (VEC4 of normalized
+unsigned shorts, as Blender exports colour attributes): red, green, blue and white at the
+corners (-x -y, +x -y, +x +y, -x +y), under a white dielectric.
 The broken files (each with the same two-cubes.bin unless said):
   bad-accessor.gltf   the POSITION accessor claims more vertices than its view holds
   bad-index.gltf      an index points past the vertices (its own bad-index.bin)
@@ -271,6 +274,32 @@ def lit():
     return doc, data
 
 
+def vertex_colors():
+    """vertex-colors.gltf: the pbr-maps quad with COLOR_0 as Blender exports colour
+    attributes (VEC4 of normalized unsigned shorts): red, green, blue and white at its
+    corners (-x -y, +x -y, +x +y, -x +y), under a white dielectric."""
+    doc, data = pbr_maps()
+    colors = [(65535, 0, 0, 65535), (0, 65535, 0, 65535), (0, 0, 65535, 65535),
+              (65535, 65535, 65535, 65535)]
+    blob = b''.join(struct.pack('<4H', *c) for c in colors)
+    doc['bufferViews'].append({'buffer': 0, 'byteOffset': len(data), 'byteLength': len(blob)})
+    data += blob
+    doc['accessors'].append({'bufferView': len(doc['bufferViews']) - 1, 'componentType': 5123,
+                             'normalized': True, 'count': 4, 'type': 'VEC4'})
+    doc['extensionsUsed'] = []
+    doc['scenes'] = [{'name': 'Scene', 'nodes': [0]}]
+    doc['nodes'] = [{'name': 'Painted', 'mesh': 0}]
+    doc['meshes'] = [{'name': 'Painted', 'primitives': [{
+        'attributes': {'POSITION': 0, 'NORMAL': 1, 'TEXCOORD_0': 2,
+                       'COLOR_0': len(doc['accessors']) - 1},
+        'indices': 4, 'material': 0}]}]
+    doc['materials'] = [{'name': 'White', 'pbrMetallicRoughness': {'metallicFactor': 0}}]
+    for key in ('textures', 'samplers', 'images'):
+        doc.pop(key)
+    doc['buffers'] = [{'byteLength': len(data), 'uri': 'vertex-colors.bin'}]
+    return doc, data
+
+
 def as_glb(doc, data):
     """The document and its buffer (its images read from beside this script and moved
     into the buffer) as one GLB file's bytes."""
@@ -327,6 +356,10 @@ def main():
         f.write(cut_data)
     write('cutout.gltf', cut)
     write('lit.gltf', lit()[0])
+    painted, painted_data = vertex_colors()
+    with open(os.path.join(HERE, 'vertex-colors.bin'), 'wb') as f:
+        f.write(painted_data)
+    write('vertex-colors.gltf', painted)
     odd = lit()[0]
     odd['cameras'][0]['type'] = 'orthographic'
     write('camera-type.gltf', odd)
@@ -344,7 +377,8 @@ def main():
     # Fuzz seeds: each of these as one self-contained GLB.
     seeds = os.path.join(HERE, '..', '..', '..', 'fuzz', 'seeds', 'gltf')
     for name, (d, b) in [('pbr-maps.glb', (maps, maps_data)), ('cutout.glb', (cut, cut_data)),
-                         ('lit.glb', (lit()[0], cut_data))]:
+                         ('lit.glb', (lit()[0], cut_data)),
+                         ('vertex-colors.glb', vertex_colors())]:
         with open(os.path.join(seeds, name), 'wb') as f:
             f.write(as_glb(d, b))
 
