@@ -95,8 +95,9 @@ pub struct Camera {
     right: Vec3A,
     /// Unit up vector (perpendicular to `forward`).
     up: Vec3A,
-    /// tan(fov / 2).
-    tan_half_fov: f32,
+    /// Half the film's height (see [`Camera::half_height`]), worked out once: it is read
+    /// for every textured hit's footprint.
+    half_height: f32,
 }
 
 impl Camera {
@@ -118,7 +119,10 @@ impl Camera {
             forward,
             right,
             up,
-            tan_half_fov: (view.fov.to_radians() * 0.5).tan(),
+            half_height: match view.projection {
+                Projection::Perspective => (view.fov.to_radians() * 0.5).tan(),
+                Projection::Orthographic { height } => height * 0.5,
+            },
         }
     }
 
@@ -129,11 +133,9 @@ impl Camera {
 
     /// Half the film's height: at distance 1 for a perspective camera (the tangent of half
     /// the field of view), in scene units for an orthographic one.
+    #[inline]
     fn half_height(&self) -> f32 {
-        match self.view.projection {
-            Projection::Perspective => self.tan_half_fov,
-            Projection::Orthographic { height } => height * 0.5,
-        }
+        self.half_height
     }
 
     /// The placement it was made from.
