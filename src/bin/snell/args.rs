@@ -85,6 +85,10 @@ pub(crate) struct ServeArgs {
     /// renders at the scene's own size.
     #[arg(long, allow_negative_numbers = true, value_parser = whole::<u32>, value_name = "PIXELS", default_value_t = 512)]
     pub(crate) size: u32,
+    /// The frame of the scene's [animation] to show (a scene without one has frame 0
+    /// only); each save shows this frame again.
+    #[arg(long, allow_negative_numbers = true, value_parser = whole::<u32>, value_name = "N", default_value_t = 0)]
+    pub(crate) frame: u32,
     #[command(flatten)]
     pub(crate) sampling: SamplingArgs,
     #[command(flatten)]

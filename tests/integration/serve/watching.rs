@@ -238,3 +238,34 @@ fn ctrl_c_stops_the_server() {
             .exists()
     );
 }
+
+/// `--frame N` shows that frame of an animated scene; a frame it does not have is the
+/// scene's error on the page, as any mistake in the file is.
+#[test]
+fn a_frame_of_an_animation_is_shown() {
+    let dir = crate::scratch("serve-frame");
+    std::fs::write(
+        dir.join("anim.toml"),
+        "[image]\nwidth = 32\nheight = 24\n[camera]\nposition = [0, 0, 6]\nlook_at = [0, 0, 0]\n\
+         [materials.m]\ncolor = 0.5\n[[lights]]\ntype = \"point\"\nposition = [0, 4, 6]\n\
+         [[objects]]\nname = \"ball\"\ntype = \"sphere\"\nradius = 1\nmaterial = \"m\"\n\
+         [animation]\nframes = 4\n[[animation.objects]]\nobject = \"ball\"\nframe = 0\n\
+         translate = [0, 0, 0]\n[[animation.objects]]\nobject = \"ball\"\nframe = 3\n\
+         translate = [1, 0, 0]\n",
+    )
+    .unwrap();
+    let shown = start(&dir, "anim.toml", &["--frame", "2"]);
+    let s = wait_for(shown.port, 30, "frame 2's picture", |s| {
+        current_frame(s) && s["error"].is_null()
+    });
+    assert!(s["error"].is_null(), "{s}");
+    let past = start(&dir, "anim.toml", &["--frame", "9"]);
+    let s = wait_for(past.port, 30, "the missing frame's message", |s| {
+        s["error"].is_string()
+    });
+    let message = s["error"].as_str().unwrap();
+    assert!(
+        message.contains("frame 9 was asked for, but the animation has 4 frames"),
+        "{message}"
+    );
+}

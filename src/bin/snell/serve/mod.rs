@@ -92,6 +92,7 @@ pub(crate) fn serve(args: ServeArgs) -> ExitCode {
     let shared = Arc::new(preview::Shared::new(preview::Settings {
         scene: args.scene.clone(),
         size: args.size,
+        frame: args.frame,
         overrides: args.sampling.overrides(),
         limits,
     }));

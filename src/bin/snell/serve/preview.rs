@@ -29,6 +29,8 @@ pub(crate) struct Settings {
     pub scene: PathBuf,
     /// The longest side of the preview, in pixels (0: the scene's own size).
     pub size: u32,
+    /// The frame of the scene's animation shown.
+    pub frame: u32,
     /// Replacements of the scene's settings (integrator, sampler, clamp, samples).
     pub overrides: Overrides,
     /// Limits the scene is checked against.
@@ -253,7 +255,16 @@ fn next_work(shared: &Shared) -> Work {
 /// are shown over the last good picture. Says whether it loaded.
 fn load(shared: &Shared) -> bool {
     let set = &shared.settings;
-    let job = RenderJob::prepare(&set.scene, &set.overrides, &set.limits, None);
+    // Each load reads the files again: a save of a texture or mesh must show.
+    let mut assets = snell::scene::AssetCache::default();
+    let job = RenderJob::prepare_frame(
+        &set.scene,
+        &set.overrides,
+        &set.limits,
+        None,
+        set.frame,
+        &mut assets,
+    );
     let loaded = job.is_ok();
     let mut s = shared.lock();
     s.version += 1;
