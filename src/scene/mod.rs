@@ -622,15 +622,24 @@ impl Scene {
         }
         let lights: Vec<String> = lights.iter().map(|(k, n)| format!("{n} {k}")).collect();
         let s = &self.settings;
-        let mut meshes = String::new();
+        // Lines for an animation and for meshes, where the scene has them.
+        let mut extra = String::new();
         let st = &self.stats;
+        if let Some(a) = self.animation {
+            extra = format!(
+                "\nanimation: {} frames at {} frames a second ({:.2} s)",
+                a.frames,
+                a.fps,
+                a.frames as f32 / a.fps
+            );
+        }
         if st.meshes > 0 {
-            meshes = format!(
+            extra += &format!(
                 "\nmeshes:    {} ({} triangles loaded, {} placed)",
                 st.meshes, st.unique_triangles, st.instanced_triangles
             );
             for m in &st.per_mesh {
-                meshes += &format!(
+                extra += &format!(
                     "\n  {}: {} triangles, placed {} time{} ({} triangles)",
                     m.file,
                     m.triangles,
@@ -641,7 +650,7 @@ impl Scene {
             }
         }
         format!(
-            "image:     {} x {}, {} spp, max depth {}, seed {}\nobjects:   {} ({})\nlights:    {} ({})\nmaterials: {}\ntextures:  {}{}{meshes}",
+            "image:     {} x {}, {} spp, max depth {}, seed {}\nobjects:   {} ({})\nlights:    {} ({})\nmaterials: {}\ntextures:  {}{}{extra}",
             s.width,
             s.height,
             s.spp,

@@ -439,3 +439,39 @@ position = [0, 1, 10]
     let out = merged([&top0, &bottom1]);
     assert_eq!(out.status.code(), Some(2));
 }
+
+#[test]
+fn check_names_the_frames_and_json_gives_them() {
+    let orbit = repo("scenes/orbit.toml");
+    let out = snell(&["check", orbit.to_str().unwrap()]);
+    assert!(out.status.success());
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        text.contains("animation: 48 frames at 24 frames a second (2.00 s)"),
+        "{text}"
+    );
+    let out = snell(&["check", orbit.to_str().unwrap(), "--json", "--width", "64"]);
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(
+        (v["frames"].as_u64(), v["fps"].as_f64()),
+        (Some(48), Some(24.0))
+    );
+    assert_eq!(
+        (v["width"].as_u64(), v["height"].as_u64()),
+        (Some(64), Some(480))
+    );
+    let files: Vec<&str> = v["files"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|f| f.as_str().unwrap())
+        .collect();
+    assert_eq!(files.len(), 1);
+    assert!(
+        files[0].ends_with("assets/earth.jpg") && !files[0].contains(".."),
+        "{files:?}"
+    );
+    // The sampling flags belong to --json.
+    let out = snell(&["check", orbit.to_str().unwrap(), "--width", "64"]);
+    assert_eq!(out.status.code(), Some(2));
+}
