@@ -586,6 +586,23 @@ pub fn did_you_mean<'a>(
         .map(|(_, c)| c)
 }
 
+/// The help for `name`, which names none of `known`: the known name it is likely a
+/// misspelling of; else, where nothing is known, `none` (how to define one); else every
+/// known name after `listed` (`defined meshes: a, b`).
+pub fn name_help<'a>(
+    name: &str,
+    known: impl IntoIterator<Item = &'a str>,
+    listed: &str,
+    none: &str,
+) -> String {
+    let known: Vec<&str> = known.into_iter().collect();
+    match did_you_mean(name, known.iter().copied()) {
+        Some(s) => format!("did you mean `{s}`?"),
+        None if known.is_empty() => none.to_string(),
+        None => format!("{listed}: {}", known.join(", ")),
+    }
+}
+
 /// Edit distance counting insertions, deletions, substitutions and swaps of neighbours
 /// (optimal string alignment), so `scael` is one step from `scale`.
 fn edit_distance(a: &str, b: &str) -> usize {

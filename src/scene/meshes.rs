@@ -4,7 +4,7 @@
 //! object placing the file becomes one object per node that places a mesh (gltf.rs here).
 
 use super::build::Builder;
-use super::diag::{DocPath, did_you_mean};
+use super::diag::{DocPath, name_help};
 use super::format::{MeshDef, MeshObjectDef};
 use crate::geometry::Mesh;
 use crate::material::Material;
@@ -100,20 +100,12 @@ impl Builder<'_> {
                         named[i].1.clone()
                     }
                     None => {
-                        let help = match did_you_mean(name, named.iter().map(|(n, _)| n.as_str())) {
-                            Some(s) => format!("did you mean `{s}`?"),
-                            None if named.is_empty() => {
-                                "define it under [meshes.NAME] with a `file`".to_string()
-                            }
-                            None => format!(
-                                "defined meshes: {}",
-                                named
-                                    .iter()
-                                    .map(|(n, _)| n.as_str())
-                                    .collect::<Vec<_>>()
-                                    .join(", ")
-                            ),
-                        };
+                        let help = name_help(
+                            name,
+                            named.iter().map(|(n, _)| n.as_str()),
+                            "defined meshes",
+                            "define it under [meshes.NAME] with a `file`",
+                        );
                         self.error_help(path.key("mesh"), format!("no mesh named `{name}`"), help);
                         None
                     }

@@ -2,7 +2,7 @@
 //! the scene's own tables (the camera, objects' transforms, lights) before the scene is
 //! built, so a frame is built exactly as a still scene with those values would be.
 
-use super::super::diag::{DocPath, did_you_mean};
+use super::super::diag::{DocPath, name_help};
 use super::super::format::*;
 use super::Builder;
 use crate::math::keyframes::{Interpolation, Key, sample};
@@ -422,14 +422,12 @@ impl Builder<'_> {
         match found[..] {
             [i] => Some(i),
             [] => {
-                let named = names.iter().flatten().map(String::as_str);
-                let help = match did_you_mean(name, named.clone()) {
-                    Some(s) => format!("did you mean `{s}`?"),
-                    None if names.iter().all(Option::is_none) => {
-                        format!("give the {what} a name: name = \"{name}\"")
-                    }
-                    None => format!("named {what}s: {}", named.collect::<Vec<_>>().join(", ")),
-                };
+                let help = name_help(
+                    name,
+                    names.iter().flatten().map(String::as_str),
+                    &format!("named {what}s"),
+                    &format!("give the {what} a name: name = \"{name}\""),
+                );
                 self.error_help(at.clone(), format!("no {what} is named `{name}`"), help);
                 None
             }

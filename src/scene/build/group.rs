@@ -3,7 +3,7 @@
 //! then the placement's. Analytic shapes are a few bytes each, so a placement copies them;
 //! a group's meshes share their triangles as every mesh placement does.
 
-use super::super::diag::{DocPath, did_you_mean};
+use super::super::diag::{DocPath, name_help};
 use super::super::meshes::{LoadedMesh, Palette};
 use super::Builder;
 use crate::math::Transform;
@@ -88,20 +88,12 @@ impl Builder<'_> {
         placing: &mut Placing,
     ) -> Vec<Object> {
         let Some(k) = groups.keys().position(|n| *n == g.group) else {
-            let help = match did_you_mean(&g.group, groups.keys().map(String::as_str)) {
-                Some(s) => format!("did you mean `{s}`?"),
-                None if groups.is_empty() => {
-                    "define it under [groups.NAME] with its objects".into()
-                }
-                None => format!(
-                    "defined groups: {}",
-                    groups
-                        .keys()
-                        .map(String::as_str)
-                        .collect::<Vec<_>>()
-                        .join(", ")
-                ),
-            };
+            let help = name_help(
+                &g.group,
+                groups.keys().map(String::as_str),
+                "defined groups",
+                "define it under [groups.NAME] with its objects",
+            );
             self.error_help(
                 path.key("group"),
                 format!("no group named `{}`", g.group),

@@ -6,7 +6,7 @@ use crate::bsdf::{ConductorFresnel, metals};
 use crate::material::detail::SurfaceDetail;
 use crate::material::{self, ColorParam, Emission, Material, Scalar, TexturedTerms};
 use crate::math::Color;
-use crate::scene::diag::{DocPath, did_you_mean};
+use crate::scene::diag::{DocPath, did_you_mean, name_help};
 use crate::scene::format::{ColorParamDef, MaterialDef, MaterialKind, ScalarDef};
 use crate::texture::Texture;
 use std::collections::BTreeMap;
@@ -264,14 +264,12 @@ impl Builder<'_> {
             tex.used[i] = true;
             return Some(i);
         }
-        let help = match did_you_mean(name, tex.names.keys().map(String::as_str)) {
-            Some(s) => format!("did you mean `{s}`?"),
-            None if tex.names.is_empty() => "define it under [textures.NAME]".to_string(),
-            None => format!(
-                "defined textures: {}",
-                tex.names.keys().cloned().collect::<Vec<_>>().join(", ")
-            ),
-        };
+        let help = name_help(
+            name,
+            tex.names.keys().map(String::as_str),
+            "defined textures",
+            "define it under [textures.NAME]",
+        );
         self.error_help(path.clone(), format!("no texture named `{name}`"), help);
         None
     }

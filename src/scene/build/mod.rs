@@ -2,7 +2,7 @@
 //! textures. Problems are collected (not just the first) and located in the text.
 
 use super::assets::AssetCache;
-use super::diag::{DocPath, Format, Problem, SceneError, did_you_mean, offset_of};
+use super::diag::{DocPath, Format, Problem, SceneError, did_you_mean, name_help, offset_of};
 use super::format::*;
 use super::meshes::{LoadedMesh, MeshCache, Palette};
 use super::{BuildStats, Fog, IntegratorSettings, Limits, Object, RenderSettings, Scene};
@@ -1282,11 +1282,12 @@ impl Builder<'_> {
         if let Some(i) = material_names.iter().position(|m| m == name) {
             return Some(i);
         }
-        let help = match did_you_mean(name, material_names.iter().map(String::as_str)) {
-            Some(s) => format!("did you mean `{s}`?"),
-            None if material_names.is_empty() => "define it under [materials.NAME]".to_string(),
-            None => format!("defined materials: {}", material_names.join(", ")),
-        };
+        let help = name_help(
+            name,
+            material_names.iter().map(String::as_str),
+            "defined materials",
+            "define it under [materials.NAME]",
+        );
         self.error_help(at.clone(), format!("no material named `{name}`"), help);
         None
     }

@@ -10,7 +10,7 @@ use crate::math::{Color, Transform, Vec3A};
 use crate::mesh_file::gltf::{self, GltfLightKind};
 use crate::scene::build::Builder;
 use crate::scene::build::camera::Placement;
-use crate::scene::diag::{DocPath, did_you_mean};
+use crate::scene::diag::{DocPath, name_help};
 use crate::scene::format::{CameraDef, CameraKind, MeshObjectDef};
 
 /// Lumens per watt: glTF's photometric units to snell's.
@@ -66,11 +66,7 @@ impl Builder<'_> {
                 Some(name) => (
                     path.key("gltf_camera"),
                     format!("{file} has no camera named `{name}`"),
-                    match did_you_mean(name, names.iter().copied()) {
-                        Some(s) => format!("did you mean `{s}`?"),
-                        None if names.is_empty() => "it has no cameras".to_string(),
-                        None => format!("its cameras: {}", names.join(", ")),
-                    },
+                    name_help(name, names.iter().copied(), "its cameras", "it has no cameras"),
                 ),
             };
             self.error_help(at, message, help);
