@@ -25,9 +25,9 @@ pub(super) struct Placing<'a, 'p> {
 
 /// A group's placement: its transform, name, and the material for objects without one.
 pub(super) struct Placement {
-    transform: Option<Transform>,
-    name: String,
-    material: Option<(String, DocPath)>,
+    pub transform: Option<Transform>,
+    pub name: String,
+    pub material: Option<(String, DocPath)>,
 }
 
 impl Builder<'_> {
@@ -55,26 +55,10 @@ impl Builder<'_> {
             _ => vec![None],
         };
         let names = &placing.palette.names[..placing.user_materials];
-        let default = placement.and_then(|p| p.material.as_ref());
-        let mut out = vec![];
-        for mesh in parts {
-            let Some(mut obj) = self.object(o, i, path, names, mesh, default) else {
-                continue;
-            };
-            if let Some(p) = placement {
-                obj.transform = match (obj.transform, p.transform) {
-                    (Some(a), Some(b)) => Some(a.then(&b)),
-                    (a, b) => a.or(b),
-                };
-                obj.world_bounds = obj.shape.bounds().map(|b| match &obj.transform {
-                    Some(t) => t.bounds_to_world(&b),
-                    None => b,
-                });
-                obj.name = format!("{}/{}", p.name, obj.name);
-            }
-            out.push(obj);
-        }
-        out
+        parts
+            .into_iter()
+            .filter_map(|mesh| self.object(o, i, path, names, mesh, placement))
+            .collect()
     }
 
     /// An object of type `group`: the group's objects, placed.

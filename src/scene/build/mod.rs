@@ -14,7 +14,7 @@ use crate::material::detail::SurfaceDetail;
 use crate::math::{Color, Frame, Transform, Vec3, Vec3A};
 use crate::sampler::SamplerKind;
 use crate::texture::{ColorSpace, Mapping, Pattern, Texture, Wrap, Wraps};
-use group::Placing;
+use group::{Placement, Placing};
 use material::MaterialTextures;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -1155,7 +1155,7 @@ impl Builder<'_> {
         path: &DocPath,
         material_names: &[String],
         mesh: Option<LoadedMesh>,
-        default_material: Option<&(String, DocPath)>,
+        placement: Option<&Placement>,
     ) -> Option<Object> {
         let (name, material, transform) = d.common();
         let mut slot_materials = vec![];
@@ -1183,7 +1183,7 @@ impl Builder<'_> {
                 );
                 None
             }
-            (None, None) => match default_material {
+            (None, None) => match placement.and_then(|p| p.material.as_ref()) {
                 Some((name, at)) => self.material_named(name, at, material_names),
                 None => {
                     self.error_help(
@@ -1201,7 +1201,7 @@ impl Builder<'_> {
         let transform = transform
             .as_ref()
             .and_then(|t| self.transform(t, &path.key("transform")));
-        // A glTF node's placement comes first, then the object's.
+        // A glTF node's placement comes first, then the object's, then its group's.
         let (transform, part) = match &mesh {
             Some(LoadedMesh {
                 node: Some(node),
@@ -1212,6 +1212,10 @@ impl Builder<'_> {
                 part.clone(),
             ),
             _ => (transform, None),
+        };
+        let transform = match (transform, placement.and_then(|p| p.transform)) {
+            (Some(a), Some(b)) => Some(a.then(&b)),
+            (a, b) => a.or(b),
         };
         let shape = match (mesh, d) {
             (Some(m), _) => Shape::Mesh(m.mesh),
@@ -1237,6 +1241,10 @@ impl Builder<'_> {
             .unwrap_or_else(|| format!("{} #{index}", shape.kind()));
         let name = match part {
             Some(part) => format!("{name}/{part}"),
+            None => name,
+        };
+        let name = match placement {
+            Some(p) => format!("{}/{name}", p.name),
             None => name,
         };
         let local_bounds = shape.bounds();
