@@ -36,18 +36,6 @@ pub(super) struct MeshLoad {
     pub triangles: u64,
 }
 
-impl AssetCache {
-    /// Images and meshes held.
-    pub fn len(&self) -> usize {
-        self.images.len() + self.meshes.len()
-    }
-
-    /// Whether it holds nothing yet.
-    pub fn is_empty(&self) -> bool {
-        self.len() == 0
-    }
-}
-
 fn canonical(path: &Path) -> PathBuf {
     std::fs::canonicalize(path).unwrap_or_else(|_| path.to_path_buf())
 }
