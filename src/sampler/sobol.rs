@@ -85,13 +85,61 @@ impl Sobol {
     #[inline]
     pub fn next_4d(&mut self) -> [f32; 4] {
         let seed = self.request();
-        sobol_burley::sample_4d(self.index, 0, seed)
+        sample_4d(self.index, seed)
     }
 }
+
+/// `sobol_burley::sample_4d(index, 0, seed)`, the same numbers, with the Sobol points looked
+/// up rather than built bit by bit. The crate XORs one direction vector per set bit of the
+/// shuffled index, a loop of up to 16 rounds with a branch no predictor learns; the points
+/// are linear in the index's bits, so two tables over its bytes (8 KiB, in L1) give them
+/// with one XOR. The shuffle and the scramble around it are the crate's own functions, with
+/// its constants; a test checks every index against the crate.
+#[inline]
+fn sample_4d(index: u32, seed: u32) -> [f32; 4] {
+    use sobol_burley::parts::{Int4, hash, hash_int4, owen_scramble_int4_rev, owen_scramble_rev};
+    let shuffled_rev = owen_scramble_rev(index.reverse_bits(), hash(seed ^ 0x79c6_8e4a));
+    let tables = &*POINTS;
+    let (hi, lo) = (
+        (shuffled_rev >> 24) as usize,
+        (shuffled_rev >> 16 & 0xff) as usize,
+    );
+    let [a, b] = [tables[1][hi], tables[0][lo]];
+    let sobol: Int4 = std::array::from_fn::<u32, 4, _>(|k| a[k] ^ b[k]).into();
+    let scramble: Int4 = [seed.wrapping_mul(0x9c8f_2d3b); 4].into();
+    let scramble = scramble ^ [0x912f_69ba, 0x174f_18ab, 0x691e_72ca, 0xb40c_c1b8].into();
+    owen_scramble_int4_rev(sobol, hash_int4(scramble))
+        .reverse_bits()
+        .to_f32_norm()
+}
+
+/// The first four dimensions' Sobol points (bit-reversed) of each byte of a 16-bit
+/// bit-reversed index: `[0]` its low byte (bits 16 to 23), `[1]` its high byte.
+static POINTS: std::sync::LazyLock<Box<[[[u32; 4]; 256]; 2]>> = std::sync::LazyLock::new(|| {
+    let point = |rev: u32| -> [u32; 4] { sobol_burley::parts::sobol_int4_rev(rev, 0).into() };
+    Box::new([
+        std::array::from_fn(|b| point((b as u32) << 16)),
+        std::array::from_fn(|b| point((b as u32) << 24)),
+    ])
+});
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The table lookup gives the crate's numbers, bit for bit, at every index.
+    #[test]
+    fn table_points_are_the_crates() {
+        for seed in [0u32, 1, 0x9e37_79b9, u32::MAX, 12345] {
+            for index in 0..MAX_SAMPLES {
+                assert_eq!(
+                    sample_4d(index, seed),
+                    sobol_burley::sample_4d(index, 0, seed),
+                    "index {index}, seed {seed}"
+                );
+            }
+        }
+    }
 
     /// A pixel's first 2^k samples of any request are a (0, k, 2)-net: every box of the
     /// square `2^a` wide and `2^(k - a)` high holds exactly one point. This is what makes
