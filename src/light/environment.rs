@@ -75,8 +75,8 @@ fn uv_of(d: Vec3A) -> Vec2 {
 /// its angle from straight up.
 pub(crate) fn direction_of(uv: Vec2) -> (Vec3A, f32) {
     let (phi, theta) = ((uv.x - 0.5) * 2.0 * PI, uv.y * PI);
-    let (st, ct) = theta.sin_cos();
-    let (sp, cp) = phi.sin_cos();
+    let (st, ct) = approx::sin_cos(theta);
+    let (sp, cp) = approx::sin_cos(phi);
     (Vec3A::new(st * sp, ct, -st * cp), st)
 }
 
@@ -143,7 +143,7 @@ impl EnvironmentMap {
     /// the unit square, over the `2 pi^2 sin(theta)` solid angle per unit of it.
     #[inline]
     fn pdf_at(&self, uv: Vec2) -> f32 {
-        let sin = (uv.y * PI).sin();
+        let sin = approx::sin_cos(uv.y * PI).0;
         if sin <= 0.0 {
             return 0.0;
         }

@@ -82,6 +82,10 @@ impl Distribution1d {
             return None;
         }
         let u = (u as f64).clamp(0.0, 1.0);
+        // One piece (a scene's only light): what the search below gives, without it.
+        if self.len() == 1 {
+            return Some((0, self.probability(0), u.min(1.0 - 1e-7) as f32));
+        }
         // The last i with cdf[i] <= u, among the pieces of non-zero chance: between the
         // guide's entries for u's bucket and the next (the whole table should rounding put
         // u outside them).
@@ -190,6 +194,11 @@ mod tests {
             for u in us {
                 assert_eq!(d.sample_discrete(u).unwrap().0, full(u), "u = {u} of {w:?}");
             }
+        }
+        // One piece: chosen for sure, the number passed on as it came (below 1).
+        let one = Distribution1d::new(&[2.5]);
+        for u in [0.0f32, 0.3, 0.999_999, 1.0] {
+            assert_eq!(one.sample_discrete(u), Some((0, 1.0, u.min(1.0 - 1e-7))));
         }
     }
 
