@@ -3,27 +3,104 @@
 //! own weights, each continuous within its cell.
 
 use super::Vec2;
-use super::distribution::Distribution1d;
 
 /// A density over `[0, 1)^2`, constant over each cell of a `width` x `height` grid and in
 /// proportion to the cell's weight. `x` runs along a row, `y` down the rows.
 ///
-/// Each row's cells are kept as one stretch of cumulative probabilities in `f32` and a guide
-/// table of `u16`, all rows in one allocation: sampling a large map is bound by the cache
-/// misses of reading them (docs/perf-log.md), and a cell's density comes from the same
-/// numbers its samples were drawn by, so the two agree exactly.
+/// A row is chosen by its total, then a cell within it. Each choice is a search of a
+/// stretch of cumulative probabilities in `f32`, started from a guide table of `u16`; the
+/// rows' stretches share one allocation. Sampling a large map is bound by the cache misses
+/// of reading them (docs/perf-log.md), and a cell's density comes from the same numbers its
+/// samples were drawn by, so the two agree exactly.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Distribution2d {
-    /// Over the rows, by their totals.
-    rows: Distribution1d,
     width: usize,
+    height: usize,
+    /// Over the rows, by their totals: `height + 1` numbers, the probability of the rows
+    /// before each row (0 first, 1 last).
+    row_cdf: Vec<f32>,
+    /// The guide of `row_cdf` (see [`guide`]).
+    row_guide: Vec<u16>,
     /// Row by row, `width + 1` numbers each: the probability of the cells before each cell
     /// within the row (0 first, 1 last).
     cdf: Vec<f32>,
-    /// Row by row, `width` numbers each: entry `k` is the last cell `i` whose `cdf[i]` is at
-    /// most `k / width`, where the search for a `u` in that bucket starts. Empty for rows
-    /// too wide for `u16` (searched whole).
+    /// Row by row, the guide of each row's stretch of `cdf`.
     guide: Vec<u16>,
+}
+
+/// Appends to `cdf` the `n + 1` cumulative probabilities of `weights` (0 first, 1 last).
+/// Negative and non-finite weights count as 0; with no weight at all every piece is alike.
+fn push_cumulative(cdf: &mut Vec<f32>, weights: &[f32]) -> f64 {
+    let clean = |x: f32| {
+        if x.is_finite() && x > 0.0 {
+            x as f64
+        } else {
+            0.0
+        }
+    };
+    let total: f64 = weights.iter().map(|&x| clean(x)).sum();
+    let (weight, sum): (&dyn Fn(f32) -> f64, f64) = if total > 0.0 {
+        (&clean, total)
+    } else {
+        (&|_| 1.0, weights.len() as f64)
+    };
+    let start = cdf.len();
+    let mut acc = 0.0f64;
+    cdf.push(0.0f32);
+    for &x in weights {
+        acc += weight(x);
+        cdf.push((acc / sum) as f32);
+    }
+    cdf[start + weights.len()] = 1.0;
+    total
+}
+
+/// Appends the guide of `c` (`n + 1` cumulative probabilities) to `guide`: entry `k` is the
+/// last piece `i` whose `c[i]` is at most `k / n`, where the search for a `u` in that bucket
+/// starts. Nothing for tables too long for `u16` (searched whole).
+fn push_guide(guide: &mut Vec<u16>, c: &[f32]) {
+    let n = c.len() - 1;
+    if n > u16::MAX as usize + 1 {
+        return;
+    }
+    for k in 0..n {
+        let x = k as f32 / n as f32;
+        let i = (c.partition_point(|&v| v <= x).saturating_sub(1)).min(n - 1);
+        guide.push(i as u16);
+    }
+}
+
+/// The piece of `c` (`n + 1` cumulative probabilities, with guide `g` or none) that `u`
+/// (in `[0, 1)`) falls in: the last `i` with `c[i] <= u`, which has a width (the pieces of
+/// none before it are passed over).
+#[inline]
+fn find(c: &[f32], g: &[u16], u: f32) -> usize {
+    let n = c.len() - 1;
+    if !g.is_empty() {
+        let k = ((u * n as f32) as usize).min(n - 1);
+        let lo = g[k] as usize;
+        let hi = if k + 1 < n { g[k + 1] as usize + 1 } else { n };
+        // Rounding may put `u` just outside its bucket's range: then the whole table.
+        if c[lo] <= u && c[hi] > u {
+            return lo + c[lo..=hi].partition_point(|&v| v <= u) - 1;
+        }
+    }
+    (c.partition_point(|&v| v <= u).saturating_sub(1)).min(n - 1)
+}
+
+/// Where in `[0, 1)` `u` falls within piece `i` of `c` (`n + 1` cumulative probabilities of
+/// `n` equal pieces), and the density there.
+#[inline]
+fn place(c: &[f32], i: usize, u: f32) -> (f32, f32) {
+    let n = (c.len() - 1) as f32;
+    let (lo, hi) = (c[i], c[i + 1]);
+    let rest = ((u - lo) / (hi - lo)).clamp(0.0, 1.0);
+    let mut x = (i as f32 + rest) / n;
+    // Rounding may carry the point onto the next piece's edge: keep it in its own.
+    while x > 0.0 && (x * n) as usize > i {
+        x = f32::from_bits(x.to_bits() - 1);
+    }
+    (x, (hi - lo) * n)
 }
 
 impl Distribution2d {
@@ -32,107 +109,69 @@ impl Distribution2d {
     pub fn new(weights: &[f32], width: usize, height: usize) -> Self {
         assert_eq!(weights.len(), width * height, "one weight per cell");
         let w = width.max(1);
-        let clean = |x: f32| {
-            if x.is_finite() && x > 0.0 {
-                x as f64
-            } else {
-                0.0
-            }
-        };
         let mut cdf = Vec::with_capacity(height * (w + 1));
-        let guided = w <= u16::MAX as usize + 1;
-        let mut guide = Vec::with_capacity(if guided { height * w } else { 0 });
+        let mut guide = Vec::with_capacity(height * w);
         let mut totals = Vec::with_capacity(height);
         for row in weights.chunks_exact(w) {
-            let total: f64 = row.iter().map(|&x| clean(x)).sum();
-            totals.push(total as f32);
             // A row of no weight is never chosen; its cells are made alike all the same.
-            let (weight, sum): (&dyn Fn(f32) -> f64, f64) = if total > 0.0 {
-                (&clean, total)
-            } else {
-                (&|_| 1.0, w as f64)
-            };
             let start = cdf.len();
-            let mut acc = 0.0f64;
-            cdf.push(0.0f32);
-            for &x in row {
-                acc += weight(x);
-                cdf.push((acc / sum) as f32);
-            }
-            cdf[start + w] = 1.0;
-            if guided {
-                let c = &cdf[start..];
-                for k in 0..w {
-                    let x = k as f32 / w as f32;
-                    let i = (c.partition_point(|&v| v <= x).saturating_sub(1)).min(w - 1);
-                    guide.push(i as u16);
-                }
-            }
+            totals.push(push_cumulative(&mut cdf, row) as f32);
+            push_guide(&mut guide, &cdf[start..]);
+        }
+        let (mut row_cdf, mut row_guide) = (Vec::new(), Vec::new());
+        if height > 0 {
+            push_cumulative(&mut row_cdf, &totals);
+            push_guide(&mut row_guide, &row_cdf);
         }
         Distribution2d {
-            rows: Distribution1d::new(&totals),
             width: w,
+            height,
+            row_cdf,
+            row_guide,
             cdf,
             guide,
         }
     }
 
-    /// Row `r`'s cumulative probabilities.
+    /// Row `r`'s cumulative probabilities and guide.
     #[inline]
-    fn row_cdf(&self, r: usize) -> &[f32] {
-        &self.cdf[r * (self.width + 1)..(r + 1) * (self.width + 1)]
-    }
-
-    /// The cell of row `r` that `u` (in `[0, 1)`) falls in: the last `i` with `cdf[i] <= u`,
-    /// which has a width (the cells of none before it are passed over).
-    #[inline]
-    fn column(&self, r: usize, u: f32) -> usize {
-        let (w, c) = (self.width, self.row_cdf(r));
-        if !self.guide.is_empty() {
-            let g = &self.guide[r * w..(r + 1) * w];
-            let k = ((u * w as f32) as usize).min(w - 1);
-            let lo = g[k] as usize;
-            let hi = if k + 1 < w { g[k + 1] as usize + 1 } else { w };
-            // Rounding may put `u` just outside its bucket's range: then the whole row.
-            if c[lo] <= u && c[hi] > u {
-                return lo + c[lo..=hi].partition_point(|&v| v <= u) - 1;
-            }
-        }
-        (c.partition_point(|&v| v <= u).saturating_sub(1)).min(w - 1)
+    fn row_tables(&self, r: usize) -> (&[f32], &[u16]) {
+        let w = self.width;
+        let guide = if self.guide.is_empty() {
+            &[][..]
+        } else {
+            &self.guide[r * w..(r + 1) * w]
+        };
+        (&self.cdf[r * (w + 1)..(r + 1) * (w + 1)], guide)
     }
 
     /// A point of the square chosen by `u`, with its density; `None` for an empty grid.
     pub fn sample(&self, u: Vec2) -> Option<(Vec2, f32)> {
-        let (y, py) = self.rows.sample_continuous(u.y)?;
-        let r = self.row(y);
-        let ux = u.x.clamp(0.0, 1.0 - f32::EPSILON);
-        let i = self.column(r, ux);
-        let c = self.row_cdf(r);
-        let (lo, hi) = (c[i], c[i + 1]);
-        let rest = ((ux - lo) / (hi - lo)).clamp(0.0, 1.0);
-        let n = self.width as f32;
-        let mut x = (i as f32 + rest) / n;
-        // Rounding may carry the point onto the next cell's edge: keep it in its own.
-        while x > 0.0 && (x * n) as usize > i {
-            x = f32::from_bits(x.to_bits() - 1);
+        if self.height == 0 {
+            return None;
         }
-        Some((Vec2::new(x, y), py * (hi - lo) * n))
+        let uy = u.y.clamp(0.0, 1.0 - f32::EPSILON);
+        let r = find(&self.row_cdf, &self.row_guide, uy);
+        let (y, py) = place(&self.row_cdf, r, uy);
+        let (c, g) = self.row_tables(r);
+        let ux = u.x.clamp(0.0, 1.0 - f32::EPSILON);
+        let (x, px) = place(c, find(c, g, ux), ux);
+        Some((Vec2::new(x, y), py * px))
     }
 
     /// The density of [`Distribution2d::sample`] at `p`.
     #[inline]
     pub fn pdf(&self, p: Vec2) -> f32 {
-        if self.rows.is_empty() {
+        if self.height == 0 {
             return 0.0;
         }
-        let c = self.row_cdf(self.row(p.y));
-        let i = ((p.x * self.width as f32) as usize).min(self.width - 1);
-        self.rows.pdf_continuous(p.y) * (c[i + 1] - c[i]) * self.width as f32
-    }
-
-    fn row(&self, y: f32) -> usize {
-        let h = self.rows.len();
-        ((y * h as f32) as usize).min(h - 1)
+        let (h, w) = (self.height, self.width);
+        let r = ((p.y * h as f32) as usize).min(h - 1);
+        let i = ((p.x * w as f32) as usize).min(w - 1);
+        let (c, _) = self.row_tables(r);
+        // As `sample` multiplies them, to the bit.
+        let py = (self.row_cdf[r + 1] - self.row_cdf[r]) * h as f32;
+        py * ((c[i + 1] - c[i]) * w as f32)
     }
 }
 
