@@ -8,6 +8,7 @@ mod conductor;
 mod dielectric;
 pub mod fresnel;
 mod lambert;
+mod metallic;
 pub mod metals;
 pub mod microfacet;
 mod phong;
@@ -17,6 +18,7 @@ mod thin_dielectric;
 pub use conductor::{Conductor, ConductorFresnel};
 pub use dielectric::Dielectric;
 pub use lambert::Lambert;
+pub use metallic::MetallicMix;
 pub use phong::{PhongBase, PhongMix};
 pub use plastic::{Plastic, internal_diffuse_reflectance};
 pub use thin_dielectric::ThinDielectric;
@@ -78,6 +80,8 @@ pub enum Bsdf {
     Plastic(Plastic),
     /// A Phong material's mix of base, mirror and glass.
     Phong(PhongMix),
+    /// glTF's blend of a metal and a coated diffuse surface.
+    Metallic(MetallicMix),
 }
 
 impl Bsdf {
@@ -90,6 +94,7 @@ impl Bsdf {
             Bsdf::ThinDielectric(b) => b.f(wo, wi),
             Bsdf::Plastic(b) => b.f(wo, wi),
             Bsdf::Phong(b) => b.f(wo, wi),
+            Bsdf::Metallic(b) => b.f(wo, wi),
         }
     }
 
@@ -103,6 +108,7 @@ impl Bsdf {
             Bsdf::ThinDielectric(b) => b.sample(wo, u, uc),
             Bsdf::Plastic(b) => b.sample(wo, u, uc),
             Bsdf::Phong(b) => b.sample(wo, u, uc),
+            Bsdf::Metallic(b) => b.sample(wo, u, uc),
         }
     }
 
@@ -116,6 +122,7 @@ impl Bsdf {
             Bsdf::ThinDielectric(b) => b.pdf(wo, wi),
             Bsdf::Plastic(b) => b.pdf(wo, wi),
             Bsdf::Phong(b) => b.pdf(wo, wi),
+            Bsdf::Metallic(b) => b.pdf(wo, wi),
         }
     }
 }
@@ -132,6 +139,7 @@ impl Bsdf {
             Bsdf::ThinDielectric(_) => "thin dielectric",
             Bsdf::Plastic(_) => "plastic",
             Bsdf::Phong(_) => "phong mix",
+            Bsdf::Metallic(_) => "metallic mix",
         }
     }
 
@@ -143,6 +151,7 @@ impl Bsdf {
             Bsdf::Dielectric(b) => !b.distribution.is_smooth() && b.eta != 1.0,
             Bsdf::ThinDielectric(_) => false,
             Bsdf::Phong(b) => b.weights[0] > 0.0,
+            Bsdf::Metallic(b) => b.has_non_delta(),
         }
     }
 

@@ -8,6 +8,7 @@ pub mod cutout;
 pub mod detail;
 pub mod dielectric;
 pub mod diffuse;
+pub mod metallic;
 pub mod param;
 pub mod phong;
 pub mod plastic;
@@ -156,6 +157,8 @@ pub enum Surface {
     Thin(f32),
     /// Coated diffuse (see [`plastic`]).
     Plastic(plastic::Plastic),
+    /// glTF's blend of metal and coated diffuse (see [`metallic`]).
+    Metallic(metallic::Metallic),
 }
 
 impl Material {
@@ -180,6 +183,7 @@ impl Material {
             Surface::Dielectric(d) => d.bsdf(self, textures, p),
             Surface::Thin(ior) => thin::bsdf(*ior),
             Surface::Plastic(c) => c.bsdf(self, base, textures, p),
+            Surface::Metallic(c) => c.bsdf(self, base, textures, p),
         }
     }
 
@@ -196,6 +200,11 @@ impl Material {
             Surface::Conductor(c) => scalar(&c.roughness),
             Surface::Dielectric(d) => scalar(&d.roughness),
             Surface::Plastic(p) => scalar(&p.roughness),
+            Surface::Metallic(m) => {
+                scalar(&m.metal.roughness);
+                scalar(&m.dielectric.roughness);
+                scalar(&m.metallic);
+            }
             Surface::Phong | Surface::Diffuse | Surface::Thin(_) => {}
         }
         let mut color = |c: &ColorParam| {
@@ -203,8 +212,11 @@ impl Material {
                 out.push(*t);
             }
         };
-        if let Surface::Conductor(c) = &self.surface {
-            c.index.iter().flatten().for_each(&mut color);
+        match &self.surface {
+            Surface::Conductor(c) | Surface::Metallic(metallic::Metallic { metal: c, .. }) => {
+                c.index.iter().flatten().for_each(&mut color)
+            }
+            _ => {}
         }
         if let Some(e) = &self.emission {
             color(&e.radiance);

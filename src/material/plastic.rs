@@ -53,11 +53,22 @@ impl Plastic {
 
     /// The BSDF at a point whose colour is `base`.
     pub fn bsdf(&self, m: &Material, base: Color, textures: &[Texture], p: &TexturePoint) -> Bsdf {
-        Bsdf::Plastic(bsdf::Plastic {
+        Bsdf::Plastic(self.plastic(m, base, textures, p))
+    }
+
+    /// [`Plastic::bsdf`]'s plastic.
+    pub fn plastic(
+        &self,
+        m: &Material,
+        base: Color,
+        textures: &[Texture],
+        p: &TexturePoint,
+    ) -> bsdf::Plastic {
+        bsdf::Plastic {
             r: base.clamp(Color::ZERO, Color::ONE),
             eta: m.ior,
             fdr_int: self.fdr_int,
             distribution: Ggx::isotropic(self.roughness.at(textures, p).clamp(0.0, 1.0)),
-        })
+        }
     }
 }

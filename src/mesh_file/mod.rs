@@ -22,6 +22,8 @@ pub struct MeshData {
     pub normals: Vec<[f32; 3]>,
     /// Per-vertex texture coordinates (same length as `positions`), or empty.
     pub uvs: Vec<[f32; 2]>,
+    /// A second set of them (glTF's `TEXCOORD_1`), or empty.
+    pub uvs1: Vec<[f32; 2]>,
     /// Per-vertex tangents (glTF's `TANGENT`: unit `xyz`, the bitangent's sign in `w`),
     /// or empty.
     pub tangents: Vec<[f32; 4]>,
@@ -97,6 +99,7 @@ impl MeshData {
             positions,
             normals,
             uvs,
+            uvs1,
             tangents,
             colors,
             triangles,
@@ -125,6 +128,10 @@ impl MeshData {
             positions,
             normals,
             uvs: uvs
+                .into_iter()
+                .map(|[u, v]| Vec2::new(u, 1.0 - v))
+                .collect(),
+            uvs1: uvs1
                 .into_iter()
                 .map(|[u, v]| Vec2::new(u, 1.0 - v))
                 .collect(),

@@ -1,8 +1,9 @@
 //! The patch of surface a pixel sees at a hit, from the ray's differentials: what texture
 //! filtering reads, and what a mirror or glass needs to pass the differentials on.
 
+use super::Object;
 use super::{Hit, Scene};
-use crate::geometry::ShapeHit;
+use crate::geometry::{Shape, ShapeHit};
 use crate::math::differential::{Differentials, surface_offsets};
 use crate::math::{Ray, Vec2, Vec3A};
 use crate::texture::Footprint;
@@ -61,6 +62,17 @@ impl RayDifferentials {
     }
 }
 
+/// How object `o`'s second uv changes over object-space offsets `dp` on triangle `prim`,
+/// if it is a mesh with a second set.
+pub(super) fn second_uv_change(o: &Object, prim: u32, dp: [Vec3A; 2]) -> Option<[Vec2; 2]> {
+    match &o.shape {
+        Shape::Mesh(m) if m.has_second_uv() => {
+            Some(dp.map(|d| m.second_uv_change(prim, d).unwrap_or(Vec2::ZERO)))
+        }
+        _ => None,
+    }
+}
+
 impl Scene {
     /// Whether the material at `hit` reads a texture that varies (so a footprint matters).
     #[inline]
@@ -88,6 +100,8 @@ impl Scene {
                 dpdy,
                 duvdx: Vec2::ZERO,
                 duvdy: Vec2::ZERO,
+                duv1dx: Vec2::ZERO,
+                duv1dy: Vec2::ZERO,
             },
             dp,
             dn: [Vec3A::ZERO; 2],
@@ -111,6 +125,11 @@ impl Scene {
             .differential(hit.tex.point, &shape_hit, dpdy, want_uv);
         patch.footprint.duvdx = duvdx * o.uv_scale;
         patch.footprint.duvdy = duvdy * o.uv_scale;
+        if want_uv {
+            let [x, y] = second_uv_change(o, hit.prim, [dpdx, dpdy]).unwrap_or([duvdx, duvdy]);
+            patch.footprint.duv1dx = x * o.uv_scale;
+            patch.footprint.duv1dy = y * o.uv_scale;
+        }
         if normals {
             // The normals there, to world space, less the hit's.
             let world = |n: Vec3A| {

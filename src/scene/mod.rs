@@ -510,9 +510,12 @@ impl Scene {
             Some(t) => t.ray_to_object(ray),
         };
         let s = o.shape.surface(local.at(h.t), &h, want_uv);
-        let shading = match &o.shape {
-            Shape::Mesh(m) => m.interpolated_normal(&h),
-            _ => None,
+        let (shading, uv1) = match &o.shape {
+            Shape::Mesh(m) => (
+                m.interpolated_normal(&h),
+                if want_uv { m.second_uv(&h) } else { None },
+            ),
+            _ => (None, None),
         };
         let (point, normal, shading_normal) = match &o.transform {
             None => (s.point, s.normal, shading.unwrap_or(s.normal)),
@@ -537,6 +540,7 @@ impl Scene {
             tex: TexturePoint {
                 point: s.point,
                 uv: s.uv * o.uv_scale,
+                uv1: uv1.unwrap_or(s.uv) * o.uv_scale,
                 center: o.center,
                 footprint: None,
             },

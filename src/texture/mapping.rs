@@ -9,6 +9,9 @@ pub struct TexturePoint<'a> {
     pub point: Vec3A,
     /// The shape's own uv at the point.
     pub uv: Vec2,
+    /// Its second uv (a glTF mesh's `TEXCOORD_1`), `uv` where it has none. (It fills what
+    /// was padding before `center`: a hit is no larger for it.)
+    pub uv1: Vec2,
     /// Centre of the object's bounds, in object space (the default centre of spherical and
     /// cylindrical mappings).
     pub center: Vec3A,
@@ -31,6 +34,10 @@ pub struct Footprint {
     pub duvdx: Vec2,
     /// The same one pixel down.
     pub duvdy: Vec2,
+    /// The second uv there minus the point's (`duvdx` where the shape has no second set).
+    pub duv1dx: Vec2,
+    /// The same one pixel down.
+    pub duv1dy: Vec2,
 }
 
 impl Footprint {
@@ -55,6 +62,7 @@ impl TexturePoint<'static> {
         TexturePoint {
             point,
             uv: Vec2::ZERO,
+            uv1: Vec2::ZERO,
             center: Vec3A::ZERO,
             footprint: None,
         }
@@ -65,6 +73,7 @@ impl TexturePoint<'static> {
         TexturePoint {
             point: Vec3A::ZERO,
             uv,
+            uv1: uv,
             center: Vec3A::ZERO,
             footprint: None,
         }
@@ -80,6 +89,13 @@ pub enum Mapping {
     /// The shape's own uv through an affine map, `uv' = m[0] u + m[1] v + m[2]` (glTF's
     /// KHR_texture_transform).
     UvTransform {
+        /// The map's columns: the images of `u` and `v`, and the offset.
+        m: [Vec2; 3],
+    },
+    /// The shape's second uv (a glTF mesh's `TEXCOORD_1`; the first on shapes without one)
+    /// through an affine map as [`Mapping::UvTransform`]'s (the identity where the file
+    /// gives none).
+    SecondUv {
         /// The map's columns: the images of `u` and `v`, and the offset.
         m: [Vec2; 3],
     },
@@ -129,6 +145,7 @@ impl Mapping {
         match self {
             Mapping::Uv => p.uv,
             Mapping::UvTransform { m } => m[0] * p.uv.x + m[1] * p.uv.y + m[2],
+            Mapping::SecondUv { m } => m[0] * p.uv1.x + m[1] * p.uv1.y + m[2],
             Mapping::Spherical { center, rotation } => {
                 let mut d = p.point - center.unwrap_or(p.center);
                 if let Some(r) = rotation {
@@ -171,6 +188,10 @@ impl Mapping {
                 let d = |duv: Vec2| m[0] * duv.x + m[1] * duv.y;
                 (uv, d(f.duvdx), d(f.duvdy))
             }
+            Mapping::SecondUv { m } => {
+                let d = |duv: Vec2| m[0] * duv.x + m[1] * duv.y;
+                (uv, d(f.duv1dx), d(f.duv1dy))
+            }
             Mapping::Planar { u_axis, v_axis, .. } => {
                 let d = |dp: Vec3A| Vec2::new(dp.dot(*u_axis), dp.dot(*v_axis));
                 (uv, d(f.dpdx), d(f.dpdy))
@@ -190,7 +211,10 @@ impl Mapping {
 
     /// Whether it reads the shape's own uv.
     pub fn reads_shape_uv(&self) -> bool {
-        matches!(self, Mapping::Uv | Mapping::UvTransform { .. })
+        matches!(
+            self,
+            Mapping::Uv | Mapping::UvTransform { .. } | Mapping::SecondUv { .. }
+        )
     }
 
     /// Whether its `u` and `v` grow the ways the shape's own do (the shape's uv, offset or
@@ -249,10 +273,47 @@ mod tests {
         let p = TexturePoint {
             point: Vec3A::new(10.0, 12.0, -80.0),
             uv: Vec2::ZERO,
+            uv1: Vec2::ZERO,
             center: Vec3A::new(10.0, 8.0, -80.0),
             footprint: None,
         };
         assert!(m.uv(&p).y.abs() < 1e-6, "north pole");
+    }
+
+    /// The second uv set, through its map: its own point and its own footprint.
+    #[test]
+    fn the_second_uv_set_reads_its_own_uv_and_footprint() {
+        let m = Mapping::SecondUv {
+            m: [
+                Vec2::new(2.0, 0.0),
+                Vec2::new(0.0, 1.0),
+                Vec2::new(0.5, 0.0),
+            ],
+        };
+        let f = Footprint {
+            duvdx: Vec2::new(1.0, 0.0),
+            duvdy: Vec2::new(0.0, 1.0),
+            duv1dx: Vec2::new(0.01, 0.0),
+            duv1dy: Vec2::new(0.0, 0.02),
+            dpdx: Vec3A::X,
+            dpdy: Vec3A::Y,
+        };
+        let p = TexturePoint {
+            uv1: Vec2::new(0.1, 0.3),
+            footprint: Some(&f),
+            ..TexturePoint::with_uv(Vec2::new(0.7, 0.7))
+        };
+        assert_eq!(m.uv(&p), Vec2::new(0.7, 0.3));
+        let (uv, dx, dy) = m.uv_footprint(&p);
+        assert_eq!(
+            (uv, dx, dy),
+            (
+                Vec2::new(0.7, 0.3),
+                Vec2::new(0.02, 0.0),
+                Vec2::new(0.0, 0.02)
+            )
+        );
+        assert!(m.reads_shape_uv() && !m.keeps_uv_axes());
     }
 
     #[test]

@@ -288,6 +288,7 @@ mod tests {
                 dpdy: crate::math::Vec3A::Y,
                 duvdx: Vec2::new(d, 0.0),
                 duvdy: Vec2::new(0.0, d),
+                ..Default::default()
             };
             t.eval(&TexturePoint {
                 footprint: Some(&f),

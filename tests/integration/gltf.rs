@@ -411,3 +411,124 @@ fn vertex_colours_tint_the_base_colour_between_the_corners() {
         "{c}"
     );
 }
+
+/// A metallic map of metal and dielectric areas (tests/data/gltf/metallic-map.gltf) is read
+/// point by point: the dielectric third is plastic, the metal third metal, and the middle
+/// third their blend by the map's 128 / 255. Rendered under a white sky, the pure red metal
+/// reflects no green, the dielectric's clear coat reflects white, and the half-metal about
+/// half as much.
+#[test]
+fn a_metallic_map_blends_metal_and_dielectric_point_by_point() {
+    use snell::bsdf::Bsdf;
+    use snell::integrator::Path as PathTracer;
+    use snell::material::Surface;
+    let scene = scene_with("metallic-map.gltf", "");
+    let bsdf_at = |x: f32| {
+        let h = hit(&scene, [x, 0.0, 5.0], [0.0, 0.0, -1.0]);
+        let m = scene.material_at(&h);
+        assert!(matches!(m.surface, Surface::Metallic(_)), "{:?}", m.surface);
+        m.bsdf(&scene.textures, &h.tex, scene.base_color(&h, &h.tex))
+    };
+    assert!(matches!(bsdf_at(-2.0), Bsdf::Plastic(_)));
+    match bsdf_at(0.0) {
+        Bsdf::Metallic(b) => assert!((b.metallic - 128.0 / 255.0).abs() < 1e-3, "{b:?}"),
+        other => panic!("the middle is a blend: {other:?}"),
+    }
+    assert!(matches!(bsdf_at(2.0), Bsdf::Conductor(_)));
+
+    // Seen straight on, orthographic: each pixel column is 0.1 wide, x from -3 to 3.
+    let scene = scene_text(
+        "[image]\nwidth = 60\nheight = 20\nsamples = 64\n\
+         [integrator]\ntype = \"path\"\n\
+         [environment]\ntype = \"constant\"\ncolor = 1\n\
+         [camera]\ntype = \"orthographic\"\nheight = 2\nposition = [0, 0, 5]\nlook_at = [0, 0, 0]\n\
+         [[objects]]\ntype = \"mesh\"\nfile = \"metallic-map.gltf\"\n",
+    )
+    .unwrap();
+    let img = render(&scene, &PathTracer, Some(2), &|_| {}).unwrap().image;
+    // The mean of the columns around x, in the middle rows.
+    let mean = |x: f32| {
+        let c = ((x + 3.0) / 0.1) as usize;
+        let mut sum = Color::ZERO;
+        for y in 6..14 {
+            for col in c - 3..c + 3 {
+                sum += img.pixels[y * 60 + col];
+            }
+        }
+        sum / 48.0
+    };
+    let (dielectric, half, metal) = (mean(-2.0), mean(0.0), mean(2.0));
+    assert_eq!(metal.y, 0.0, "{metal}");
+    assert!(metal.x > 0.5, "{metal}");
+    assert!(dielectric.y > 0.02, "{dielectric}");
+    assert!(
+        (half.y / dielectric.y - (1.0 - 128.0 / 255.0)).abs() < 0.15,
+        "{half} against {dielectric}"
+    );
+}
+
+/// TEXCOORD_1 (assets/models/assimp/BoxTexcoords, a cube as Blender's exporter writes it):
+/// the material reads its base colour through the first uv set and its metallic-roughness
+/// map through the second, which lies elsewhere on the image. Near the corner (1, 1, 1) of
+/// the +z face the first set is (0.709, 0.178), where the map's green is about 204, and the
+/// second (0.557, 0.297), where it is about 250: the roughness follows the second.
+#[test]
+fn a_map_on_the_second_uv_set_reads_it() {
+    use snell::material::{Scalar, Surface};
+    use snell::texture::Mapping;
+    let dir = repo("assets/models/assimp/BoxTexcoords");
+    let text = "[camera]\nposition = [0, 0, 6]\nlook_at = [0, 0, 0]\n\
+                [[objects]]\ntype = \"mesh\"\nfile = \"boxTexcoords.gltf\"\n";
+    let scene = load_str(text, &dir.join("t.toml"), &dir, Format::Toml).unwrap();
+    assert!(
+        !scene.warnings.iter().any(|w| w.contains("TEXCOORD")),
+        "{:?}",
+        scene.warnings
+    );
+    let h = hit(&scene, [0.98, 0.98, 5.0], [0.0, 0.0, -1.0]);
+    assert!(
+        (h.tex.uv - snell::math::Vec2::new(0.709, 0.178)).length() < 0.01,
+        "{}",
+        h.tex.uv
+    );
+    assert!(
+        (h.tex.uv1 - snell::math::Vec2::new(0.557, 0.297)).length() < 0.01,
+        "{}",
+        h.tex.uv1
+    );
+    let m = scene.material_at(&h);
+    let Surface::Plastic(p) = &m.surface else {
+        panic!("metallic 0 makes plastic: {:?}", m.surface)
+    };
+    let Scalar::Texture(r) = p.roughness else {
+        panic!("roughness is read from the map")
+    };
+    assert!(matches!(
+        scene.textures[r].mapping,
+        Mapping::SecondUv { .. }
+    ));
+    // The map's green, bilinear at a uv (texel centres at (i + 0.5) / 256), squared.
+    let map = image::open(dir.join("texture.png")).unwrap().to_rgb8();
+    let alpha_at = |uv: snell::math::Vec2| {
+        let (x, y) = (uv.x * 256.0 - 0.5, uv.y * 256.0 - 0.5);
+        let (x0, y0) = (x.floor(), y.floor());
+        let g = |i: f32, j: f32| map.get_pixel(i as u32, j as u32)[1] as f32 / 255.0;
+        let (fx, fy) = (x - x0, y - y0);
+        let top = g(x0, y0) * (1.0 - fx) + g(x0 + 1.0, y0) * fx;
+        let bottom = g(x0, y0 + 1.0) * (1.0 - fx) + g(x0 + 1.0, y0 + 1.0) * fx;
+        (top * (1.0 - fy) + bottom * fy).powi(2)
+    };
+    let alpha = p.roughness.at(&scene.textures, &h.tex);
+    let (second, first) = (alpha_at(h.tex.uv1), alpha_at(h.tex.uv));
+    assert!(
+        (alpha - second).abs() < 1e-3,
+        "alpha {alpha}, the second set's {second}"
+    );
+    assert!(
+        (alpha - first).abs() > 0.2,
+        "alpha {alpha}, the first set's {first}"
+    );
+    // The base colour reads the first set: the image's colour there (97, 204, 96, sRGB).
+    let base = scene.base_color(&h, &h.tex);
+    assert!(base.y > 2.0 * base.x, "{base}");
+}

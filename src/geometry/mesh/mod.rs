@@ -4,6 +4,7 @@
 //! (`Arc`) by every object that places it, so a thousand instances cost one copy.
 
 mod colors;
+mod second_uv;
 mod solid;
 mod tangents;
 
@@ -28,6 +29,8 @@ pub struct MeshInput {
     pub normals: Vec<Vec3>,
     /// Per-vertex texture coordinates, or empty.
     pub uvs: Vec<Vec2>,
+    /// A second set of them (glTF's `TEXCOORD_1`), or empty.
+    pub uvs1: Vec<Vec2>,
     /// Corner indices of each triangle, counter-clockwise seen from the front.
     pub triangles: Vec<[u32; 3]>,
     /// Per triangle, the index of its material slot (see [`Mesh::slots`]), or empty.
@@ -58,6 +61,8 @@ pub struct Mesh {
     filled: Vec<u8>,
     normals: Vec<Vec3>,
     uvs: Vec<Vec2>,
+    /// The second set of uvs, or empty (see second_uv.rs).
+    uvs1: Vec<Vec2>,
     /// Per-vertex colours, or empty (see colors.rs).
     colors: Vec<Vec3>,
     /// Material slot of each triangle, in BVH order, or empty.
@@ -80,6 +85,7 @@ impl Mesh {
             positions,
             normals,
             uvs,
+            uvs1,
             triangles,
             triangle_slots,
             tangents,
@@ -102,6 +108,13 @@ impl Mesh {
             return Err(format!(
                 "{} uvs for {} vertices",
                 uvs.len(),
+                positions.len()
+            ));
+        }
+        if !uvs1.is_empty() && uvs1.len() != positions.len() {
+            return Err(format!(
+                "{} second uvs for {} vertices",
+                uvs1.len(),
                 positions.len()
             ));
         }
@@ -241,6 +254,7 @@ impl Mesh {
                 filled: taken.iter().map(|&n| n as u8).collect(),
                 normals,
                 uvs,
+                uvs1,
                 colors,
                 slots,
                 tangents: corner_tangents,
@@ -278,6 +292,7 @@ impl Mesh {
             + self.faces.len() * 12
             + self.normals.len() * 12
             + self.uvs.len() * 8
+            + self.uvs1.len() * 8
             + self.colors.len() * 12
             + self.slots.len() * 2
             + self.filled.len()
@@ -390,21 +405,10 @@ impl Mesh {
     /// (the barycentrics themselves where the mesh has no uvs), and the vertex normals
     /// interpolated there (the face's normal where the mesh has none).
     pub fn differential(&self, p: Vec3A, hit: &ShapeHit, dp: Vec3A) -> (Vec2, Vec3A) {
-        let [a, b, c] = self.corners(hit.prim);
-        let (e1, e2) = (b - a, c - a);
-        let (d00, d01, d11) = (e1.dot(e1), e1.dot(e2), e2.dot(e2));
-        let denom = d00 * d11 - d01 * d01;
-        // The barycentrics (of the second and third corners) of an offset in the plane.
-        let bary_of = |v: Vec3A| {
-            let (d20, d21) = (v.dot(e1), v.dot(e2));
-            Vec2::new(
-                (d11 * d20 - d01 * d21) / denom,
-                (d00 * d21 - d01 * d20) / denom,
-            )
-        };
-        if denom.is_nan() || denom <= 0.0 {
+        let Some(bary_of) = self.barycentrics_in_plane(hit.prim) else {
             return (Vec2::ZERO, self.surface(hit).normal);
-        }
+        };
+        let a = self.corners(hit.prim)[0];
         let hit = &ShapeHit {
             bary: bary_of(p - a),
             ..*hit
@@ -425,6 +429,32 @@ impl Mesh {
             .interpolated_normal(&moved)
             .unwrap_or_else(|| self.surface(hit).normal);
         (duv, normal)
+    }
+
+    /// The barycentrics (of the second and third corners) of an offset in the plane of
+    /// triangle `prim`; `None` for a triangle of no area.
+    fn barycentrics_in_plane(&self, prim: u32) -> Option<impl Fn(Vec3A) -> Vec2> {
+        let [a, b, c] = self.corners(prim);
+        let (e1, e2) = (b - a, c - a);
+        let (d00, d01, d11) = (e1.dot(e1), e1.dot(e2), e2.dot(e2));
+        let denom = d00 * d11 - d01 * d01;
+        if denom.is_nan() || denom <= 0.0 {
+            return None;
+        }
+        Some(move |v: Vec3A| {
+            let (d20, d21) = (v.dot(e1), v.dot(e2));
+            Vec2::new(
+                (d11 * d20 - d01 * d21) / denom,
+                (d00 * d21 - d01 * d20) / denom,
+            )
+        })
+    }
+
+    /// How the barycentrics change over an offset `dp` in the plane of triangle `prim`
+    /// (zero for a triangle of no area).
+    fn barycentric_change(&self, prim: u32, dp: Vec3A) -> Vec2 {
+        self.barycentrics_in_plane(prim)
+            .map_or(Vec2::ZERO, |b| b(dp))
     }
 
     /// The corners of triangle `prim` (in BVH order).

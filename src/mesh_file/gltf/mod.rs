@@ -413,6 +413,7 @@ fn read_mesh(
     let mut any_normals = false;
     let mut normals: Vec<Option<[f32; 3]>> = vec![];
     let mut uvs: Vec<Option<[f32; 2]>> = vec![];
+    let mut uvs1: Vec<Option<[f32; 2]>> = vec![];
     let mut tangents: Vec<Option<[f32; 4]>> = vec![];
     let mut colors: Vec<Option<[f32; 3]>> = vec![];
     for (p, prim) in mesh.primitives().enumerate() {
@@ -447,6 +448,10 @@ fn read_mesh(
             Some(it) => uvs.extend(it.into_f32().map(|[u, v]| Some([u, 1.0 - v]))),
             None => uvs.extend(std::iter::repeat_n(None, n)),
         }
+        match reader.read_tex_coords(1) {
+            Some(it) => uvs1.extend(it.into_f32().map(|[u, v]| Some([u, 1.0 - v]))),
+            None => uvs1.extend(std::iter::repeat_n(None, n)),
+        }
         match reader.read_tangents() {
             Some(it) => tangents.extend(it.map(Some)),
             None => tangents.extend(std::iter::repeat_n(None, n)),
@@ -460,6 +465,7 @@ fn read_mesh(
         colors.resize(base + n, None);
         normals.resize(base + n, None);
         uvs.resize(base + n, None);
+        uvs1.resize(base + n, None);
         tangents.resize(base + n, None);
         let indices: Vec<u32> = match reader.read_indices() {
             Some(i) => i.into_u32().collect(),
@@ -505,6 +511,14 @@ fn read_mesh(
     if any_normals {
         data.normals = normals.into_iter().map(|n| n.unwrap_or([0.0; 3])).collect();
     }
+    // A second set where any primitive has one; a vertex without one takes its first.
+    if uvs1.iter().any(Option::is_some) {
+        data.uvs1 = uvs1
+            .iter()
+            .zip(&uvs)
+            .map(|(t, first)| t.or(*first).unwrap_or([0.0; 2]))
+            .collect();
+    }
     if uvs.iter().any(Option::is_some) {
         data.uvs = uvs.into_iter().map(|t| t.unwrap_or([0.0; 2])).collect();
     }
@@ -540,13 +554,19 @@ fn read_mesh(
 fn check_layouts(prim: &gltf::Primitive) -> Result<(), String> {
     use gltf::accessor::{DataType as T, Dimensions as D};
     use gltf::mesh::Semantic as S;
-    let checks: [(S, &str, D, &[T]); 4] = [
+    let checks: [(S, &str, D, &[T]); 5] = [
         (S::Positions, "POSITION", D::Vec3, &[T::F32]),
         (S::Normals, "NORMAL", D::Vec3, &[T::F32]),
         (S::Tangents, "TANGENT", D::Vec4, &[T::F32]),
         (
             S::TexCoords(0),
             "TEXCOORD_0",
+            D::Vec2,
+            &[T::F32, T::U8, T::U16],
+        ),
+        (
+            S::TexCoords(1),
+            "TEXCOORD_1",
             D::Vec2,
             &[T::F32, T::U8, T::U16],
         ),

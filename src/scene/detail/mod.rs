@@ -50,11 +50,15 @@ impl Scene {
         };
         let duv = steps
             .map(|(_, l)| o.shape.differential(hit.tex.point, &shape_hit, l, true).0 * o.uv_scale);
+        let duv1 = super::footprint::second_uv_change(o, hit.prim, steps.map(|s| s.1))
+            .map_or(duv, |d| d.map(|d| d * o.uv_scale));
         let footprint = Footprint {
             dpdx: steps[0].1,
             dpdy: steps[1].1,
             duvdx: duv[0],
             duvdy: duv[1],
+            duv1dx: duv1[0],
+            duv1dy: duv1[1],
         };
         let (_, a, b) = mapping.uv_footprint(&TexturePoint {
             footprint: Some(&footprint),

@@ -1,8 +1,10 @@
 //! glTF's metallic-roughness materials as snell's, as docs/scene-format.md sets out:
 //! KHR_materials_transmission of 0.5 or more makes glass (of KHR_materials_ior, 1.5 by
-//! default); metallic 0.5 or more (the factor times the metallic map's mean) a metal of the
-//! base colour; anything else the base colour under a clear coat (snell's `plastic`, as
-//! glTF's dielectric is a diffuse base under a GGX specular layer of IOR 1.5). Roughness is
+//! default); metallic 1 (the factor times the metallic map's blue channel, the same
+//! everywhere) a metal of the base colour; metallic 0 the base colour under a clear coat
+//! (snell's `plastic`, as glTF's dielectric is a diffuse base under a GGX specular layer of
+//! IOR 1.5); anything between (a factor such as 0.3, a map of metal and dielectric areas)
+//! their blend by the metallic value point by point ([`Metallic`]). Roughness is
 //! perceptual (GGX alpha is its square), from the factor times the map's green channel
 //! point by point. The normal map bends the shading normal; the emissive factor (times
 //! KHR_materials_emissive_strength, times the emissive map) makes an emitter. Each map is
@@ -15,8 +17,9 @@ use crate::material::conductor::Conductor;
 use crate::material::cutout::Cutout;
 use crate::material::detail::SurfaceDetail;
 use crate::material::dielectric::Dielectric;
+use crate::material::metallic::Metallic;
 use crate::material::plastic::Plastic;
-use crate::material::{ColorParam, Emission, Material, Scalar};
+use crate::material::{ColorParam, Emission, Material, Scalar, Surface};
 use crate::math::{Color, Vec2};
 use crate::mesh_file::gltf::{Alpha, PbrMaterial, TextureRef};
 use crate::texture::{ColorSpace, ImageData, Mapping, Pattern, Texture, Wraps};
@@ -100,7 +103,7 @@ pub(in crate::scene) fn pbr_material(
     textures: &mut Vec<Texture>,
     warn: &mut dyn FnMut(String),
 ) -> Material {
-    for t in m.textures().filter(|t| t.texcoord != 0) {
+    for t in m.textures().filter(|t| t.texcoord > 1) {
         warn(format!(
             "material `{}` reads TEXCOORD_{}, which snell does not read: it uses TEXCOORD_0",
             m.name, t.texcoord
@@ -136,6 +139,19 @@ pub(in crate::scene) fn pbr_material(
             ((roughness * mean.y).powi(2), mean.z)
         }
         None => (roughness * roughness, 1.0),
+    };
+    // Metallic point by point from the map's blue channel: a constant where the factor
+    // times the map is one value all over.
+    let factor = unit(m.metallic);
+    let metallic = match &mr {
+        Some((img, t)) => match blue_range(img) {
+            (lo, hi) if factor * lo == factor * hi => Scalar::Value(factor * lo),
+            _ => Scalar::Texture(add(
+                Pattern::Image(from_texels(img, |c| Color::splat(factor * c.z))),
+                Some(t),
+            )),
+        },
+        None => Scalar::Value(factor),
     };
     let alpha_param = match mr {
         Some((img, t)) => {
@@ -218,6 +234,20 @@ pub(in crate::scene) fn pbr_material(
         .material(texture, base, alpha, emission),
         PbrType::Plastic => Plastic::new(alpha_param, ior).material(texture, ior, alpha, emission),
     };
+    // Partly metal: the blend, under the Phong terms of the part its mean leans to.
+    let partly = !matches!(metallic, Scalar::Value(v) if v <= 0.0 || v >= 1.0);
+    if pbr_type(m, metallic_mean) != PbrType::Glass && partly {
+        out.surface = Surface::Metallic(Metallic {
+            metal: Conductor {
+                fresnel: ConductorFresnel::One,
+                index: None,
+                roughness: alpha_param,
+            },
+            dielectric: Plastic::new(alpha_param, ior),
+            metallic,
+        });
+        out.ior = ior;
+    }
     out.detail = detail;
     out.cutout = cutout;
     out
@@ -232,14 +262,19 @@ fn unit(x: f32) -> f32 {
     }
 }
 
-/// The mapping a texture reference reads through: the shape's uv, transformed where it
-/// says so.
+/// The mapping a texture reference reads through: the shape's uv (its second set for
+/// `TEXCOORD_1`), transformed where it says so.
 fn mapping(t: Option<&TextureRef>) -> Mapping {
-    match t.and_then(|t| t.transform) {
-        Some(m) if m.iter().flatten().all(|x| x.is_finite()) => Mapping::UvTransform {
-            m: m.map(Vec2::from),
+    let transform = t
+        .and_then(|t| t.transform)
+        .filter(|m| m.iter().flatten().all(|x| x.is_finite()))
+        .map(|m| m.map(Vec2::from));
+    match (transform, t.is_some_and(|t| t.texcoord == 1)) {
+        (m, true) => Mapping::SecondUv {
+            m: m.unwrap_or([Vec2::X, Vec2::Y, Vec2::ZERO]),
         },
-        _ => Mapping::Uv,
+        (Some(m), false) => Mapping::UvTransform { m },
+        (None, false) => Mapping::Uv,
     }
 }
 
@@ -252,6 +287,18 @@ fn scaled(img: Arc<ImageData>, factor: Color, max: Color) -> Arc<ImageData> {
     }
     let f = factor.clamp(Color::ZERO, max);
     from_texels(&img, |c| c * f)
+}
+
+/// The least and the greatest of an image's blue channel.
+fn blue_range(img: &ImageData) -> (f32, f32) {
+    let mut range = (f32::INFINITY, f32::NEG_INFINITY);
+    for y in 0..img.height() {
+        for x in 0..img.width() {
+            let b = img.texel(x, y).z;
+            range = (range.0.min(b), range.1.max(b));
+        }
+    }
+    range
 }
 
 /// GGX alpha from a metallic-roughness map: `(factor x green)^2` in every channel.

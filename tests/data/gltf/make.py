@@ -33,6 +33,10 @@ a directional light `Sun` turned -90 degrees about x (shining down -y) of 1366 l
 vertex-colors.gltf (+ vertex-colors.bin): the quad with COLOR_0 (VEC4 of normalized
 unsigned shorts, as Blender exports colour attributes): red, green, blue and white at the
 corners (-x -y, +x -y, +x +y, -x +y), under a white dielectric.
+metallic-map.gltf (+ pbr-maps.bin, metal-strip.png): the quad stretched to 6 x 2 (x from
+-3 to 3), under `ThreeMetals`: base colour factor pure red, roughness factor 0.5, metallic
+factor 1 times metal-strip.png, whose six texels' blue runs 0, 0, 128, 128, 255, 255 along
+u (green 255): a dielectric third, a half-metal third and a metal third.
 The broken files (each with the same two-cubes.bin unless said):
   bad-accessor.gltf   the POSITION accessor claims more vertices than its view holds
   bad-index.gltf      an index points past the vertices (its own bad-index.bin)
@@ -300,6 +304,24 @@ def vertex_colors():
     return doc, data
 
 
+def metallic_map():
+    """metallic-map.gltf: the pbr-maps quad, stretched to 6 x 2, whose metallic map runs
+    from dielectric through half metal to metal along u."""
+    doc, _ = pbr_maps()
+    doc['extensionsUsed'] = []
+    doc['scenes'] = [{'name': 'Scene', 'nodes': [0]}]
+    doc['nodes'] = [{'name': 'Strip', 'mesh': 0, 'scale': [6, 2, 1]}]
+    doc['meshes'] = doc['meshes'][:1]
+    doc['meshes'][0]['name'] = 'Strip'
+    doc['materials'] = [{'name': 'ThreeMetals', 'pbrMetallicRoughness': {
+        'baseColorFactor': [1, 0, 0, 1], 'metallicFactor': 1, 'roughnessFactor': 0.5,
+        'metallicRoughnessTexture': {'index': 0}}}]
+    doc['textures'] = [{'source': 0}]
+    doc.pop('samplers')
+    doc['images'] = [{'uri': 'metal-strip.png', 'mimeType': 'image/png'}]
+    return doc
+
+
 def as_glb(doc, data):
     """The document and its buffer (its images read from beside this script and moved
     into the buffer) as one GLB file's bytes."""
@@ -360,6 +382,9 @@ def main():
     with open(os.path.join(HERE, 'vertex-colors.bin'), 'wb') as f:
         f.write(painted_data)
     write('vertex-colors.gltf', painted)
+    with open(os.path.join(HERE, 'metal-strip.png'), 'wb') as f:
+        f.write(png(6, 1, [(0, 255, b) for b in (0, 0, 128, 128, 255, 255)]))
+    write('metallic-map.gltf', metallic_map())
     odd = lit()[0]
     odd['cameras'][0]['type'] = 'orthographic'
     write('camera-type.gltf', odd)
