@@ -434,6 +434,10 @@ impl Bvh {
     /// where two objects are hit at exactly the same distance (a cylinder standing on a
     /// floor, seen from inside), the walk keeps the one whose box it entered first, and so
     /// does this.
+    ///
+    /// Always inlined into the scene's batch query: the inliner left it out of line once
+    /// that query grew, which cost a textured mesh scene 3 % (docs/perf-log.md).
+    #[inline(always)]
     pub fn closest_hits(
         &self,
         objects: &[Object],

@@ -58,16 +58,6 @@ impl Conductor {
 
     /// The BSDF at a point whose tint is `tint`.
     pub fn bsdf(&self, tint: Color, textures: &[Texture], p: &TexturePoint) -> Bsdf {
-        Bsdf::Conductor(self.conductor(tint, textures, p))
-    }
-
-    /// [`Conductor::bsdf`]'s conductor.
-    pub fn conductor(
-        &self,
-        tint: Color,
-        textures: &[Texture],
-        p: &TexturePoint,
-    ) -> bsdf::Conductor {
         let fresnel = match self.index {
             Some([eta, k]) => ConductorFresnel::Complex {
                 eta: eta.at(textures, p),
@@ -75,10 +65,10 @@ impl Conductor {
             },
             None => self.fresnel,
         };
-        bsdf::Conductor {
+        Bsdf::Conductor(bsdf::Conductor {
             fresnel,
             distribution: Ggx::isotropic(self.roughness.at(textures, p).clamp(0.0, 1.0)),
             tint: tint.clamp(Color::ZERO, Color::ONE),
-        }
+        })
     }
 }

@@ -1,22 +1,21 @@
 //! glTF's metallic-roughness material where its metallic value lies between 0 and 1 (a
 //! factor such as 0.3, or a map): at each point, the metal and the coated dielectric of the
 //! point's base colour and roughness, blended by the metallic value there (see
-//! [`crate::bsdf::MetallicMix`]). Whitted reads the Phong terms of the part the value's mean
-//! leans to.
+//! [`crate::bsdf::MetallicMix`]). glTF's metal reflects its base colour at every angle
+//! (snell's conductor of `F = 1` tinted by the colour). Whitted reads the Phong terms of the
+//! part the value's mean leans to.
 
-use super::conductor::Conductor;
 use super::plastic::Plastic;
 use super::{Material, Scalar};
-use crate::bsdf::{Bsdf, MetallicMix};
+use crate::bsdf::{self, Bsdf, ConductorFresnel, MetallicMix};
 use crate::math::Color;
 use crate::texture::{Texture, TexturePoint};
 
-/// A blend of a metal and a coated diffuse surface.
+/// A blend of a metal and a coated diffuse surface of one roughness.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Metallic {
-    /// The metal (tinted by the base colour).
-    pub metal: Conductor,
-    /// The dielectric (the base colour under a coat of the material's index).
+    /// The dielectric (the base colour under a coat of the material's index), whose
+    /// roughness the metal shares.
     pub dielectric: Plastic,
     /// The metal's share, 0 to 1 (kept to that range where read).
     pub metallic: Scalar,
@@ -32,17 +31,22 @@ impl Metallic {
         } else {
             0.0
         };
-        if metallic >= 1.0 {
-            return self.metal.bsdf(base, textures, p);
-        }
         let dielectric = self.dielectric.plastic(m, base, textures, p);
-        if metallic <= 0.0 {
-            return Bsdf::Plastic(dielectric);
+        let metal = bsdf::Conductor {
+            fresnel: ConductorFresnel::One,
+            distribution: dielectric.distribution,
+            tint: dielectric.r,
+        };
+        if metallic >= 1.0 {
+            Bsdf::Conductor(metal)
+        } else if metallic <= 0.0 {
+            Bsdf::Plastic(dielectric)
+        } else {
+            Bsdf::Metallic(MetallicMix {
+                metal,
+                dielectric,
+                metallic,
+            })
         }
-        Bsdf::Metallic(MetallicMix {
-            metal: self.metal.conductor(base, textures, p),
-            dielectric,
-            metallic,
-        })
     }
 }

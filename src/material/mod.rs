@@ -201,7 +201,6 @@ impl Material {
             Surface::Dielectric(d) => scalar(&d.roughness),
             Surface::Plastic(p) => scalar(&p.roughness),
             Surface::Metallic(m) => {
-                scalar(&m.metal.roughness);
                 scalar(&m.dielectric.roughness);
                 scalar(&m.metallic);
             }
@@ -213,9 +212,7 @@ impl Material {
             }
         };
         match &self.surface {
-            Surface::Conductor(c) | Surface::Metallic(metallic::Metallic { metal: c, .. }) => {
-                c.index.iter().flatten().for_each(&mut color)
-            }
+            Surface::Conductor(c) => c.index.iter().flatten().for_each(&mut color),
             _ => {}
         }
         if let Some(e) = &self.emission {

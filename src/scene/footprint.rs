@@ -126,7 +126,10 @@ impl Scene {
         patch.footprint.duvdx = duvdx * o.uv_scale;
         patch.footprint.duvdy = duvdy * o.uv_scale;
         if want_uv {
-            let [x, y] = second_uv_change(o, hit.prim, [dpdx, dpdy]).unwrap_or([duvdx, duvdy]);
+            let second = self.needs_uv1[hit.object]
+                .then(|| second_uv_change(o, hit.prim, [dpdx, dpdy]))
+                .flatten();
+            let [x, y] = second.unwrap_or([duvdx, duvdy]);
             patch.footprint.duv1dx = x * o.uv_scale;
             patch.footprint.duv1dy = y * o.uv_scale;
         }

@@ -345,6 +345,9 @@ pub struct Scene {
     transparent_objects: Vec<usize>,
     /// Per object: whether its texture reads the shape's own uv.
     needs_uv: Vec<bool>,
+    /// Per object: whether it is a mesh with a second uv set that a texture of it reads
+    /// (the others' second uv is their first).
+    needs_uv1: Vec<bool>,
     /// Per material: whether it reads a texture that varies over the surface.
     textured: Vec<bool>,
     /// Per object: whether a material of it has holes cut by alpha (see `cutout.rs`).
@@ -503,6 +506,16 @@ impl Scene {
     }
 
     fn hit_details(&self, ray: &Ray, i: usize, h: ShapeHit, force_uv: bool) -> Hit {
+        /// Out of line: few objects have a second uv set, and `hit_details` is inlined
+        /// into every ray query (with this in it, it was not, which cost 3 %).
+        #[cold]
+        #[inline(never)]
+        fn second_uv(o: &Object, h: &ShapeHit) -> Option<crate::math::Vec2> {
+            match &o.shape {
+                Shape::Mesh(m) => m.second_uv(h),
+                _ => None,
+            }
+        }
         let o = &self.objects[i];
         let want_uv = force_uv || self.needs_uv[i];
         let local = match &o.transform {
@@ -510,12 +523,14 @@ impl Scene {
             Some(t) => t.ray_to_object(ray),
         };
         let s = o.shape.surface(local.at(h.t), &h, want_uv);
-        let (shading, uv1) = match &o.shape {
-            Shape::Mesh(m) => (
-                m.interpolated_normal(&h),
-                if want_uv { m.second_uv(&h) } else { None },
-            ),
-            _ => (None, None),
+        let shading = match &o.shape {
+            Shape::Mesh(m) => m.interpolated_normal(&h),
+            _ => None,
+        };
+        let uv1 = if want_uv && self.needs_uv1[i] {
+            second_uv(o, &h)
+        } else {
+            None
         };
         let (point, normal, shading_normal) = match &o.transform {
             None => (s.point, s.normal, shading.unwrap_or(s.normal)),

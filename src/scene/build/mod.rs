@@ -771,6 +771,18 @@ impl Builder<'_> {
                 })
             })
             .collect();
+        let needs_uv1 = objects
+            .iter()
+            .map(|o| {
+                matches!(&o.shape, Shape::Mesh(m) if m.has_second_uv())
+                    && materials_of(o).iter().any(|&m| {
+                        materials[m]
+                            .textures()
+                            .iter()
+                            .any(|&t| matches!(textures[t].mapping, Mapping::SecondUv { .. }))
+                    })
+            })
+            .collect();
         let textured = materials
             .iter()
             .map(|m| {
@@ -800,6 +812,7 @@ impl Builder<'_> {
             transparent,
             transparent_objects,
             needs_uv,
+            needs_uv1,
             textured,
             any_cutout: cutouts.contains(&true),
             cutouts,

@@ -238,11 +238,6 @@ pub(in crate::scene) fn pbr_material(
     let partly = !matches!(metallic, Scalar::Value(v) if v <= 0.0 || v >= 1.0);
     if pbr_type(m, metallic_mean) != PbrType::Glass && partly {
         out.surface = Surface::Metallic(Metallic {
-            metal: Conductor {
-                fresnel: ConductorFresnel::One,
-                index: None,
-                roughness: alpha_param,
-            },
             dielectric: Plastic::new(alpha_param, ior),
             metallic,
         });
