@@ -211,9 +211,8 @@ impl Material {
                 out.push(*t);
             }
         };
-        match &self.surface {
-            Surface::Conductor(c) => c.index.iter().flatten().for_each(&mut color),
-            _ => {}
+        if let Surface::Conductor(c) = &self.surface {
+            c.index.iter().flatten().for_each(&mut color);
         }
         if let Some(e) = &self.emission {
             color(&e.radiance);

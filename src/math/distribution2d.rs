@@ -118,14 +118,15 @@ impl Distribution2d {
             totals.push(push_cumulative(&mut cdf, row) as f32);
             push_guide(&mut guide, &cdf[start..]);
         }
+        // (A grid of no columns has no rows either.)
         let (mut row_cdf, mut row_guide) = (Vec::new(), Vec::new());
-        if height > 0 {
+        if !totals.is_empty() {
             push_cumulative(&mut row_cdf, &totals);
             push_guide(&mut row_guide, &row_cdf);
         }
         Distribution2d {
             width: w,
-            height,
+            height: totals.len(),
             row_cdf,
             row_guide,
             cdf,
@@ -239,6 +240,16 @@ mod tests {
                 ((i / w) as f32 + 0.5) / h as f32,
             );
             assert_eq!(d.pdf(p) == 0.0, wt == 0.0, "cell {i}");
+        }
+    }
+
+    /// A grid without cells (no columns, or no rows) samples nothing and has no density.
+    #[test]
+    fn an_empty_grid_samples_nothing() {
+        for (w, h) in [(0, 3), (4, 0), (0, 0)] {
+            let d = Distribution2d::new(&[], w, h);
+            assert_eq!(d.sample(Vec2::new(0.5, 0.5)), None, "{w} x {h}");
+            assert_eq!(d.pdf(Vec2::new(0.5, 0.5)), 0.0, "{w} x {h}");
         }
     }
 

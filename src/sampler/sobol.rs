@@ -42,8 +42,8 @@ impl Sobol {
     }
 
     /// A number for a discrete choice (a light, a lobe, Russian roulette): independent,
-    /// from the sample's own generator. A Sobol dimension costs as much as four of them
-    /// (the index shuffled, a bit loop, the scramble); these choices gain little from it.
+    /// from the sample's own generator. A Sobol request costs several of them (the index
+    /// shuffled, the points looked up, the scramble); these choices gain little from it.
     #[inline]
     pub fn next_choice(&mut self) -> f32 {
         self.choices.next_f32()

@@ -141,11 +141,17 @@ pub(super) fn read(m: &gltf::Material) -> PbrMaterial {
         roughness: pbr.roughness_factor(),
         metallic_roughness_texture: pbr.metallic_roughness_texture().map(info),
         normal_scale: normal.as_ref().map_or(1.0, |n| n.scale()),
-        normal_texture: normal.map(|n| TextureRef {
-            image: n.texture().source().index(),
-            texcoord: n.tex_coord(),
-            transform: json_transform(n.extension_value("KHR_texture_transform")),
-            wrap: wraps(&n.texture()),
+        normal_texture: normal.map(|n| {
+            let transform = n.extension_value("KHR_texture_transform");
+            TextureRef {
+                image: n.texture().source().index(),
+                // The extension's texCoord, where given, overrides the texture's own.
+                texcoord: transform
+                    .and_then(|v| v.get("texCoord")?.as_u64())
+                    .map_or(n.tex_coord(), |t| t.min(u32::MAX as u64) as u32),
+                transform: json_transform(transform),
+                wrap: wraps(&n.texture()),
+            }
         }),
         emissive: m.emissive_factor().map(|e| e * strength),
         emissive_texture: m.emissive_texture().map(info),

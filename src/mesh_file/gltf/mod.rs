@@ -427,7 +427,12 @@ fn read_mesh(
             ));
             continue;
         }
-        check_layouts(&prim).map_err(|m| format!("{name}: primitive {p}: {m}"))?;
+        // The second uv set only where the primitive's material reads it (files that
+        // carry one for a light map snell does not use keep their meshes as before).
+        let wants_uv1 = material::read(&prim.material())
+            .textures()
+            .any(|t| t.texcoord == 1);
+        check_layouts(&prim, wants_uv1).map_err(|m| format!("{name}: primitive {p}: {m}"))?;
         let reader = prim.reader(|b| buffers.get(b.index()).map(|d| &d.0[..]));
         let Some(positions) = reader.read_positions() else {
             return Err(format!("{name}: primitive {p} has no POSITION"));
@@ -448,7 +453,9 @@ fn read_mesh(
             Some(it) => uvs.extend(it.into_f32().map(|[u, v]| Some([u, 1.0 - v]))),
             None => uvs.extend(std::iter::repeat_n(None, n)),
         }
-        match reader.read_tex_coords(1) {
+        // Not even asked for otherwise: the crate's reader asserts the layout it was not
+        // checked for.
+        match wants_uv1.then(|| reader.read_tex_coords(1)).flatten() {
             Some(it) => uvs1.extend(it.into_f32().map(|[u, v]| Some([u, 1.0 - v]))),
             None => uvs1.extend(std::iter::repeat_n(None, n)),
         }
@@ -550,8 +557,9 @@ fn read_mesh(
 
 /// Each attribute snell reads is laid out as glTF requires (positions and normals three
 /// floats, uvs two floats or normalized bytes or shorts, indices unsigned scalars): the
-/// `gltf` crate's readers assume it (and assert it where debug assertions are on).
-fn check_layouts(prim: &gltf::Primitive) -> Result<(), String> {
+/// `gltf` crate's readers assume it (and assert it where debug assertions are on). The
+/// second uv set is read (and checked) only where `uv1` says.
+fn check_layouts(prim: &gltf::Primitive, uv1: bool) -> Result<(), String> {
     use gltf::accessor::{DataType as T, Dimensions as D};
     use gltf::mesh::Semantic as S;
     let checks: [(S, &str, D, &[T]); 5] = [
@@ -572,6 +580,9 @@ fn check_layouts(prim: &gltf::Primitive) -> Result<(), String> {
         ),
     ];
     for (semantic, name, dims, types) in checks {
+        if semantic == S::TexCoords(1) && !uv1 {
+            continue;
+        }
         if let Some(a) = prim.get(&semantic)
             && (a.dimensions() != dims || !types.contains(&a.data_type()))
         {

@@ -135,6 +135,7 @@ impl Scene {
                     let mut p = *tex;
                     p.point += f.local[k] * step;
                     p.uv[k] += step;
+                    p.uv1[k] += step;
                     p
                 };
                 let dhdu = (h(&moved(0)) - here) / step;

@@ -26,12 +26,13 @@ use crate::texture::{ColorSpace, ImageData, Mapping, Pattern, Texture, Wraps};
 use std::collections::HashMap;
 use std::sync::Arc;
 
-/// The snell material type a glTF material becomes.
+/// The snell material type a glTF material becomes, or, where it is partly metal, whose
+/// Phong terms Whitted reads (the path tracer blends the two point by point).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(in crate::scene) enum PbrType {
     /// See-through: glass.
     Glass,
-    /// Metallic: a metal of the base colour.
+    /// Metallic (on the whole): a metal of the base colour.
     Metal,
     /// Otherwise: the base colour under a clear coat.
     Plastic,
@@ -127,7 +128,7 @@ pub(in crate::scene) fn pbr_material(
         None => add(Pattern::Solid(base), None),
     };
     // Roughness point by point from the map's green channel; the metallic map's mean picks
-    // the type.
+    // the type of the whole (below: the blend point by point, where it is partly metal).
     let roughness = unit(m.roughness);
     let mr = m
         .metallic_roughness_texture

@@ -42,6 +42,9 @@ The broken files (each with the same two-cubes.bin unless said):
   bad-index.gltf      an index points past the vertices (its own bad-index.bin)
   bad-position.gltf   a primitive's POSITION names an accessor that does not exist
   bad-uv-type.gltf    a primitive's TEXCOORD_0 names the VEC3 positions
+  bad-uv1-type.gltf   both primitives' TEXCOORD_1 name the VEC3 positions; only the second's
+                      material (Checker, its base colour now on texCoord 1) reads it, so
+                      only the second is at fault
   missing-buffer.gltf the buffer's file does not exist
   needs-draco.gltf    requires KHR_draco_mesh_compression
   not-json.gltf       not JSON at all
@@ -421,6 +424,11 @@ def main():
     uv = json.loads(json.dumps(doc))
     uv['meshes'][0]['primitives'][1]['attributes']['TEXCOORD_0'] = 0
     write('bad-uv-type.gltf', uv)
+    uv1 = json.loads(json.dumps(doc))
+    for prim in uv1['meshes'][0]['primitives']:
+        prim['attributes']['TEXCOORD_1'] = 0
+    uv1['materials'][1]['pbrMetallicRoughness']['baseColorTexture']['texCoord'] = 1
+    write('bad-uv1-type.gltf', uv1)
     empty = json.loads(json.dumps(doc))
     empty['accessors'][2]['count'] = 0
     write('no-elements.gltf', empty)
