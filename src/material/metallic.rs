@@ -5,8 +5,9 @@
 //! (snell's conductor of `F = 1` tinted by the colour). Whitted reads the Phong terms of the
 //! part the value's mean leans to.
 
+use super::conductor::Conductor;
 use super::plastic::Plastic;
-use super::{Material, Scalar};
+use super::{Emission, Material, Scalar, Surface};
 use crate::bsdf::{self, Bsdf, ConductorFresnel, MetallicMix};
 use crate::math::Color;
 use crate::texture::{Texture, TexturePoint};
@@ -22,6 +23,34 @@ pub struct Metallic {
 }
 
 impl Metallic {
+    /// The material, of base colour texture `texture` and coat index `ior`. Whitted reads
+    /// the metal's Phong terms where `mean` (the metallic value on the whole) is 0.5 or
+    /// more, else the plastic's; `tint` is the colour and `alpha` the roughness where they
+    /// are constant.
+    pub fn material(
+        self,
+        texture: usize,
+        tint: Color,
+        ior: f32,
+        alpha: f32,
+        mean: f32,
+        emission: Option<Emission>,
+    ) -> Material {
+        let mut out = if mean >= 0.5 {
+            Conductor {
+                fresnel: ConductorFresnel::One,
+                index: None,
+                roughness: self.dielectric.roughness,
+            }
+            .material(texture, tint, alpha, emission)
+        } else {
+            self.dielectric.material(texture, ior, alpha, emission)
+        };
+        out.surface = Surface::Metallic(self);
+        out.ior = ior;
+        out
+    }
+
     /// The BSDF at a point whose base colour is `base`: the metal or the dielectric alone
     /// where the value is 1 or 0, the blend between.
     pub fn bsdf(&self, m: &Material, base: Color, textures: &[Texture], p: &TexturePoint) -> Bsdf {

@@ -141,6 +141,33 @@ fn white_furnace_rough_conductor() {
     }
 }
 
+/// The `metallic` type (glTF's material) is linear in its metallic value: in a furnace, a
+/// sphere that is 0.3 metal returns 0.3 of what the metal returns and 0.7 of what the
+/// plastic does, for a coloured rough surface seen head-on.
+#[test]
+fn white_furnace_metallic_blends_its_parts() {
+    let at = |metallic: f32| {
+        mean(&furnace(
+            &format!(
+                "type = \"metallic\"\ncolor = [0.9, 0.5, 0.2]\nroughness = 0.3\nmetallic = {metallic}"
+            ),
+            256,
+            2.0,
+        ))
+    };
+    let (plastic, metal, blend) = (at(0.0), at(1.0), at(0.3));
+    let want = metal * 0.3 + plastic * 0.7;
+    assert!(
+        (blend - want).abs().max_element() < 0.01,
+        "{blend} against {want} (metal {metal}, plastic {plastic})"
+    );
+    // The two parts differ enough for that to say something.
+    assert!(
+        (metal - plastic).abs().max_element() > 0.1,
+        "{metal} {plastic}"
+    );
+}
+
 /// pbrt's closed sphere: seen from inside, a sphere of albedo 0.5 emitting 0.5 shows
 /// 0.5 (1 + 0.5 + 0.25 + ...) = 1 everywhere. Light sampling (the sphere is an area light,
 /// sampled by area from inside) and BSDF sampling both find the emission, so this tests

@@ -417,6 +417,12 @@ type = "plastic"
 color = [0.8, 0.1, 0.1]
 ior = 1.5
 roughness = 0.05
+[materials.blend]
+type = "metallic"
+color = [0.9, 0.6, 0.2]
+ior = 1.5
+roughness = 0.2
+metallic = "bands"
 [materials.lamp]
 type = "diffuse"
 color = 1

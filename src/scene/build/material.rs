@@ -165,6 +165,21 @@ impl Builder<'_> {
             MaterialKind::Thin => material::thin::material(texture, ior, emission),
             MaterialKind::Plastic => material::plastic::Plastic::new(roughness, ior)
                 .material(texture, ior, alpha, emission),
+            MaterialKind::Metallic => {
+                let unit = |b: &mut Self, x: f32, p: &DocPath| b.in_range(x, 0.0, 1.0, p);
+                let metallic = m.metallic.as_ref().map_or(Scalar::Value(1.0), |d| {
+                    self.scalar(d, &path.key("metallic"), tex, &unit)
+                });
+                let mean = match metallic {
+                    Scalar::Value(v) => v,
+                    Scalar::Texture(t) => tex.textures[t].mean().element_sum() / 3.0,
+                };
+                material::metallic::Metallic {
+                    dielectric: material::plastic::Plastic::new(roughness, ior),
+                    metallic,
+                }
+                .material(texture, color, ior, alpha, mean, emission)
+            }
         }
     }
 

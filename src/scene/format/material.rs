@@ -26,6 +26,9 @@ pub enum MaterialKind {
     Thin,
     /// A diffuse base under a clear dielectric coat, smooth or rough.
     Plastic,
+    /// glTF's metallic-roughness material: a metal and a plastic of one colour and one
+    /// roughness, blended by `metallic` (a number or a texture, point by point).
+    Metallic,
 }
 
 impl MaterialKind {
@@ -38,17 +41,19 @@ impl MaterialKind {
             MaterialKind::Dielectric => "dielectric",
             MaterialKind::Thin => "thin",
             MaterialKind::Plastic => "plastic",
+            MaterialKind::Metallic => "metallic",
         }
     }
 
     /// All types, in the order the documentation gives them.
-    pub const ALL: [MaterialKind; 6] = [
+    pub const ALL: [MaterialKind; 7] = [
         MaterialKind::Phong,
         MaterialKind::Diffuse,
         MaterialKind::Conductor,
         MaterialKind::Dielectric,
         MaterialKind::Thin,
         MaterialKind::Plastic,
+        MaterialKind::Metallic,
     ];
 }
 
@@ -57,11 +62,12 @@ impl MaterialKind {
 #[serde(deny_unknown_fields)]
 pub struct MaterialDef {
     /// How the other keys are read: `phong` (default), `diffuse`, `conductor`,
-    /// `dielectric`, `thin` or `plastic`.
+    /// `dielectric`, `thin`, `plastic` or `metallic`.
     #[serde(rename = "type", default)]
     pub kind: MaterialKind,
     /// Surface colour, linear RGB (or use `texture`): the Phong colour, the diffuse
-    /// reflectance of `diffuse` and `plastic`, a tint on a `conductor`'s reflection. Default 1.
+    /// reflectance of `diffuse` and `plastic`, a tint on a `conductor`'s reflection, the
+    /// base colour of `metallic`. Default 1.
     pub color: Option<ColorDef>,
     /// Name of a texture giving `color`.
     pub texture: Option<String>,
@@ -79,7 +85,7 @@ pub struct MaterialDef {
     /// Phong: transmitted fraction in [0, 1] (default 0), a number or a texture's name.
     pub transparency: Option<ScalarDef>,
     /// Index of refraction of the inside (phong, dielectric, thin) or of the coat
-    /// (plastic); default 1.5. A number: it belongs to the solid, not to a point of its
+    /// (plastic, metallic); default 1.5. A number: it belongs to the solid, not to a point of its
     /// surface.
     pub ior: Option<f32>,
     /// Beer-Lambert absorption per scene unit travelled inside, per channel (phong,
@@ -87,8 +93,11 @@ pub struct MaterialDef {
     pub absorption: Option<ColorDef>,
     /// GGX roughness alpha (Mitsuba's `alpha`; Blender's roughness r is alpha = r^2), a
     /// number or the name of a texture (its mean of r, g, b): 0 is smooth (conductor,
-    /// dielectric, plastic; default 0).
+    /// dielectric, plastic, metallic; default 0).
     pub roughness: Option<ScalarDef>,
+    /// Metallic: the metal's share, 0 (plastic) to 1 (metal), a number or the name of a
+    /// texture (its mean of r, g, b, kept to 0..1); default 1, as glTF's.
+    pub metallic: Option<ScalarDef>,
     /// Conductor: a named metal, `Au`, `Ag`, `Cu` or `Al` (or give `eta` and `k`; with
     /// neither the conductor is a perfect mirror).
     pub metal: Option<String>,
@@ -130,6 +139,8 @@ pub enum MaterialKey {
     Roughness,
     /// `metal`, `eta`, `k`.
     Metal,
+    /// `metallic`.
+    Metallic,
 }
 
 impl MaterialKind {
@@ -138,12 +149,22 @@ impl MaterialKind {
         use MaterialKey as K;
         use MaterialKind as M;
         match key {
-            K::Color => matches!(self, M::Phong | M::Diffuse | M::Conductor | M::Plastic),
+            K::Color => matches!(
+                self,
+                M::Phong | M::Diffuse | M::Conductor | M::Plastic | M::Metallic
+            ),
             K::Phong => self == M::Phong,
-            K::Ior => matches!(self, M::Phong | M::Dielectric | M::Thin | M::Plastic),
+            K::Ior => matches!(
+                self,
+                M::Phong | M::Dielectric | M::Thin | M::Plastic | M::Metallic
+            ),
             K::Absorption => matches!(self, M::Phong | M::Dielectric),
-            K::Roughness => matches!(self, M::Conductor | M::Dielectric | M::Plastic),
+            K::Roughness => matches!(
+                self,
+                M::Conductor | M::Dielectric | M::Plastic | M::Metallic
+            ),
             K::Metal => self == M::Conductor,
+            K::Metallic => self == M::Metallic,
         }
     }
 }
@@ -172,6 +193,7 @@ impl MaterialDef {
         add(self.metal.is_some(), "metal", K::Metal);
         add(self.eta.is_some(), "eta", K::Metal);
         add(self.k.is_some(), "k", K::Metal);
+        add(self.metallic.is_some(), "metallic", K::Metallic);
         out
     }
 }

@@ -19,7 +19,7 @@ use crate::material::detail::SurfaceDetail;
 use crate::material::dielectric::Dielectric;
 use crate::material::metallic::Metallic;
 use crate::material::plastic::Plastic;
-use crate::material::{ColorParam, Emission, Material, Scalar, Surface};
+use crate::material::{ColorParam, Emission, Material, Scalar};
 use crate::math::{Color, Vec2};
 use crate::mesh_file::gltf::{Alpha, PbrMaterial, TextureRef};
 use crate::texture::{ColorSpace, ImageData, Mapping, Pattern, Texture, Wraps};
@@ -222,11 +222,25 @@ pub(in crate::scene) fn pbr_material(
             })
         }
     };
+    // Partly metal: the blend, under the Phong terms of the part its mean leans to.
+    let partly = !matches!(metallic, Scalar::Value(v) if v <= 0.0 || v >= 1.0);
     let mut out = match pbr_type(m, metallic_mean) {
         PbrType::Glass => Dielectric {
             roughness: alpha_param,
         }
         .material(texture, ior, Color::ZERO, alpha, emission),
+        _ if partly => Metallic {
+            dielectric: Plastic::new(alpha_param, ior),
+            metallic,
+        }
+        .material(
+            texture,
+            base,
+            ior,
+            alpha,
+            m.metallic * metallic_mean,
+            emission,
+        ),
         PbrType::Metal => Conductor {
             fresnel: ConductorFresnel::One,
             index: None,
@@ -235,15 +249,6 @@ pub(in crate::scene) fn pbr_material(
         .material(texture, base, alpha, emission),
         PbrType::Plastic => Plastic::new(alpha_param, ior).material(texture, ior, alpha, emission),
     };
-    // Partly metal: the blend, under the Phong terms of the part its mean leans to.
-    let partly = !matches!(metallic, Scalar::Value(v) if v <= 0.0 || v >= 1.0);
-    if pbr_type(m, metallic_mean) != PbrType::Glass && partly {
-        out.surface = Surface::Metallic(Metallic {
-            dielectric: Plastic::new(alpha_param, ior),
-            metallic,
-        });
-        out.ior = ior;
-    }
     out.detail = detail;
     out.cutout = cutout;
     out
