@@ -147,7 +147,6 @@ impl RenderJob {
                 Some("render a smaller image (--width, --height)".into()),
             ));
         }
-        let bytes = std::fs::read(scene_path).unwrap_or_default();
         let s = &scene.settings;
         // The integrator's settings change the picture as the seed does.
         let i = &s.integrator;
@@ -167,7 +166,15 @@ impl RenderJob {
             Some(_) => crate::math::hash_seed(&[seed_and_integrator, frame as u64]),
             None => seed_and_integrator,
         };
-        let fingerprint = fingerprint(&bytes, s.width, s.height, s.spp, seed_and_integrator);
+        // The text the scene was built from, not the file read again (which may have
+        // changed since).
+        let fingerprint = fingerprint(
+            scene.source.as_bytes(),
+            s.width,
+            s.height,
+            s.spp,
+            seed_and_integrator,
+        );
         if let Some(c) = resumed
             && c.fingerprint != fingerprint
         {
@@ -259,6 +266,14 @@ mod tests {
         let limits = Limits::default();
         let job = RenderJob::prepare(&path, &Overrides::default(), &limits, None).unwrap();
         let s = &job.scene.settings;
+        // The fingerprint hashes the file's bytes as the scene was built from them (so a
+        // checkpoint of an earlier build, which read the file again, is still accepted).
+        let text = std::fs::read(&path).unwrap();
+        assert_eq!(job.scene.source.as_bytes(), &text[..]);
+        assert_eq!(
+            job.fingerprint,
+            fingerprint(&text, s.width, s.height, s.spp, s.seed)
+        );
         let mut c = Checkpoint {
             fingerprint: job.fingerprint,
             width: s.width,

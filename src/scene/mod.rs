@@ -359,6 +359,9 @@ pub struct Scene {
     pub files: Vec<PathBuf>,
     /// Its `[animation]`'s frame count and rate, if it has one.
     pub animation: Option<Animation>,
+    /// The text it was built from (what a render's fingerprint hashes: the file as it was
+    /// read, not as it may be when asked again).
+    pub source: std::sync::Arc<str>,
     /// The frame of the animation this is (0 for a scene without one).
     pub frame: u32,
 }

@@ -123,6 +123,7 @@ fn build(
     let animation = b.animate(&mut def, frame);
     let mut scene = b.scene(def);
     scene.animation = animation;
+    scene.source = text.into();
     scene.frame = frame;
     b.files.sort();
     b.files.dedup();
@@ -820,6 +821,7 @@ impl Builder<'_> {
             limits: self.limits,
             files: vec![],
             animation: None,
+            source: "".into(),
             frame: 0,
         }
     }
