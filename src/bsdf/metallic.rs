@@ -36,23 +36,13 @@ impl MetallicMix {
     /// direction the blend's value and density, which both parts may reach.
     pub fn sample(&self, wo: Vec3A, u: Vec2, uc: f32) -> Option<BsdfSample> {
         let m = self.metallic;
-        let (mut s, weight) = if uc < m {
+        let (s, weight) = if uc < m {
             (self.metal.sample(wo, u)?, m)
         } else {
             let uc = ((uc - m) / (1.0 - m)).clamp(0.0, 1.0 - f32::EPSILON / 2.0);
             (self.dielectric.sample(wo, u, uc)?, 1.0 - m)
         };
-        if s.lobe.is_specular() {
-            s.f *= weight;
-            s.pdf *= weight;
-        } else {
-            s.f = self.f(wo, s.wi);
-            s.pdf = self.pdf(wo, s.wi);
-            if s.pdf <= 0.0 {
-                return None;
-            }
-        }
-        Some(s)
+        super::as_mix_sample(s, weight, |wi| self.f(wo, wi), |wi| self.pdf(wo, wi))
     }
 
     /// Whether some of its scattering is not a delta: always, as the dielectric's diffuse

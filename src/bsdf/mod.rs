@@ -168,6 +168,30 @@ impl Bsdf {
     }
 }
 
+/// A sample of one part of a mix, chosen with chance `weight`, as the mix's sample: a delta
+/// keeps its part's value and density, each times `weight`; any other direction gets the
+/// mix's value `f` and density `pdf` there (the other parts may reach it too). `None` where
+/// the mix's density there is 0.
+#[inline]
+pub(crate) fn as_mix_sample(
+    mut s: BsdfSample,
+    weight: f32,
+    f: impl FnOnce(Vec3A) -> Color,
+    pdf: impl FnOnce(Vec3A) -> f32,
+) -> Option<BsdfSample> {
+    if s.lobe.is_specular() {
+        s.f *= weight;
+        s.pdf *= weight;
+    } else {
+        s.f = f(s.wi);
+        s.pdf = pdf(s.wi);
+        if s.pdf <= 0.0 {
+            return None;
+        }
+    }
+    Some(s)
+}
+
 /// `w` mirrored onto the front side (`z >= 0`), for lobes that are the same on either side
 /// and are written for the front.
 #[inline]

@@ -114,23 +114,13 @@ impl PhongMix {
                 .map(|i| (i, 0.5))
         })?;
         let w = self.weights[i];
-        let mut s = match self.part(i) {
+        let s = match self.part(i) {
             Part::Base(b) => b.sample(wo, u, uc)?,
             Part::Mirror(m) => m.sample(wo, u)?,
             Part::Glass(g) => g.sample(wo, u, uc)?,
         };
-        if s.lobe.is_specular() {
-            s.f *= w;
-            s.pdf *= w;
-        } else {
-            // Only the base is not a delta: its value and density, weighted.
-            s.f = self.f(wo, s.wi);
-            s.pdf = self.pdf(wo, s.wi);
-            if s.pdf <= 0.0 {
-                return None;
-            }
-        }
-        Some(s)
+        // Only the base is not a delta: its value and density, weighted.
+        super::as_mix_sample(s, w, |wi| self.f(wo, wi), |wi| self.pdf(wo, wi))
     }
 }
 
