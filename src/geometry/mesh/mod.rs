@@ -97,40 +97,17 @@ impl Mesh {
                 triangles.len()
             ));
         }
-        if !normals.is_empty() && normals.len() != positions.len() {
-            return Err(format!(
-                "{} normals for {} vertices",
-                normals.len(),
-                positions.len()
-            ));
-        }
-        if !uvs.is_empty() && uvs.len() != positions.len() {
-            return Err(format!(
-                "{} uvs for {} vertices",
-                uvs.len(),
-                positions.len()
-            ));
-        }
-        if !uvs1.is_empty() && uvs1.len() != positions.len() {
-            return Err(format!(
-                "{} second uvs for {} vertices",
-                uvs1.len(),
-                positions.len()
-            ));
-        }
-        if !colors.is_empty() && colors.len() != positions.len() {
-            return Err(format!(
-                "{} colours for {} vertices",
-                colors.len(),
-                positions.len()
-            ));
-        }
-        if !tangents.is_empty() && tangents.len() != positions.len() {
-            return Err(format!(
-                "{} tangents for {} vertices",
-                tangents.len(),
-                positions.len()
-            ));
+        // Each per-vertex array is empty or one entry per vertex.
+        for (len, what) in [
+            (normals.len(), "normals"),
+            (uvs.len(), "uvs"),
+            (uvs1.len(), "second uvs"),
+            (colors.len(), "colours"),
+            (tangents.len(), "tangents"),
+        ] {
+            if len != 0 && len != positions.len() {
+                return Err(format!("{len} {what} for {} vertices", positions.len()));
+            }
         }
         if !triangle_slots.is_empty() && triangle_slots.len() != triangles.len() {
             return Err(format!(
@@ -405,10 +382,9 @@ impl Mesh {
     /// (the barycentrics themselves where the mesh has no uvs), and the vertex normals
     /// interpolated there (the face's normal where the mesh has none).
     pub fn differential(&self, p: Vec3A, hit: &ShapeHit, dp: Vec3A) -> (Vec2, Vec3A) {
-        let Some(bary_of) = self.barycentrics_in_plane(hit.prim) else {
+        let Some((a, bary_of)) = self.barycentrics_in_plane(hit.prim) else {
             return (Vec2::ZERO, self.surface(hit).normal);
         };
-        let a = self.corners(hit.prim)[0];
         let hit = &ShapeHit {
             bary: bary_of(p - a),
             ..*hit
@@ -431,9 +407,9 @@ impl Mesh {
         (duv, normal)
     }
 
-    /// The barycentrics (of the second and third corners) of an offset in the plane of
-    /// triangle `prim`; `None` for a triangle of no area.
-    fn barycentrics_in_plane(&self, prim: u32) -> Option<impl Fn(Vec3A) -> Vec2> {
+    /// Triangle `prim`'s first corner, and the barycentrics (of the second and third
+    /// corners) of an offset in its plane; `None` for a triangle of no area.
+    fn barycentrics_in_plane(&self, prim: u32) -> Option<(Vec3A, impl Fn(Vec3A) -> Vec2)> {
         let [a, b, c] = self.corners(prim);
         let (e1, e2) = (b - a, c - a);
         let (d00, d01, d11) = (e1.dot(e1), e1.dot(e2), e2.dot(e2));
@@ -441,20 +417,27 @@ impl Mesh {
         if denom.is_nan() || denom <= 0.0 {
             return None;
         }
-        Some(move |v: Vec3A| {
+        Some((a, move |v: Vec3A| {
             let (d20, d21) = (v.dot(e1), v.dot(e2));
             Vec2::new(
                 (d11 * d20 - d01 * d21) / denom,
                 (d00 * d21 - d01 * d20) / denom,
             )
-        })
+        }))
+    }
+
+    /// The barycentrics (of the second and third corners) of point `p` (object space) on
+    /// triangle `prim` (zero for a triangle of no area).
+    pub(super) fn barycentrics(&self, p: Vec3A, prim: u32) -> Vec2 {
+        self.barycentrics_in_plane(prim)
+            .map_or(Vec2::ZERO, |(a, b)| b(p - a))
     }
 
     /// How the barycentrics change over an offset `dp` in the plane of triangle `prim`
     /// (zero for a triangle of no area).
     fn barycentric_change(&self, prim: u32, dp: Vec3A) -> Vec2 {
         self.barycentrics_in_plane(prim)
-            .map_or(Vec2::ZERO, |b| b(dp))
+            .map_or(Vec2::ZERO, |(_, b)| b(dp))
     }
 
     /// The corners of triangle `prim` (in BVH order).

@@ -8,7 +8,7 @@
 //! bitangent `w (n x t)` the way up the image (glTF's and OpenGL's +y of a normal map).
 
 use super::{Mesh, ShapeHit};
-use crate::math::{Vec2, Vec3A};
+use crate::math::Vec3A;
 
 /// A corner's tangent: unit `xyz`, and the bitangent's sign in `w`.
 pub type Tangent = [f32; 4];
@@ -57,23 +57,6 @@ impl Mesh {
         }
         let sign = if t0[3] < 0.0 { -1.0 } else { 1.0 };
         Some((t, n.cross(t) * sign))
-    }
-
-    /// The barycentrics (of the second and third corners) of the point `p` on triangle
-    /// `prim`'s plane.
-    pub(super) fn barycentrics(&self, p: Vec3A, prim: u32) -> Vec2 {
-        let [a, b, c] = self.corners(prim);
-        let (e1, e2, d) = (b - a, c - a, p - a);
-        let (d00, d01, d11) = (e1.dot(e1), e1.dot(e2), e2.dot(e2));
-        let (d20, d21) = (d.dot(e1), d.dot(e2));
-        let denom = d00 * d11 - d01 * d01;
-        if denom.is_nan() || denom <= 0.0 {
-            return Vec2::ZERO;
-        }
-        Vec2::new(
-            (d11 * d20 - d01 * d21) / denom,
-            (d00 * d21 - d01 * d20) / denom,
-        )
     }
 
     /// Per-vertex tangents (a file's) spread to every corner.
