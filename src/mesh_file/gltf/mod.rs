@@ -163,6 +163,9 @@ fn parse_with(bytes: &[u8], path: &Path, geometry: bool) -> Result<GltfScene, Me
     };
     let mut mesh_of: HashMap<usize, usize> = HashMap::new();
     let mut used_materials = vec![false; document.materials().len()];
+    if geometry {
+        out.materials = document.materials().map(|m| material::read(&m)).collect();
+    }
     while let Some((node, parent, depth)) = stack.pop() {
         if depth > 256 {
             return Err(error(
@@ -175,7 +178,7 @@ fn parse_with(bytes: &[u8], path: &Path, geometry: bool) -> Result<GltfScene, Me
             let k = match mesh_of.get(&mesh.index()) {
                 Some(&k) => k,
                 None => {
-                    let m = read_mesh(&mesh, &buffers, &mut out.warnings)
+                    let m = read_mesh(&mesh, &buffers, &out.materials, &mut out.warnings)
                         .map_err(|msg| error(path, msg))?;
                     for s in m.slots.iter().flatten() {
                         used_materials[*s] = true;
@@ -208,7 +211,6 @@ fn parse_with(bytes: &[u8], path: &Path, geometry: bool) -> Result<GltfScene, Me
     if !geometry {
         return Ok(out);
     }
-    out.materials = document.materials().map(|m| material::read(&m)).collect();
     // The images the used materials show, decoded.
     let mut wanted = vec![false; document.images().len()];
     for (m, used) in out.materials.iter().zip(&used_materials) {
@@ -403,6 +405,7 @@ fn check_views(doc: &gltf::Document, buffers: &[gltf::buffer::Data]) -> Result<(
 fn read_mesh(
     mesh: &gltf::Mesh,
     buffers: &[gltf::buffer::Data],
+    materials: &[PbrMaterial],
     warnings: &mut Vec<String>,
 ) -> Result<GltfMesh, String> {
     let name = mesh
@@ -429,9 +432,11 @@ fn read_mesh(
         }
         // The second uv set only where the primitive's material reads it (files that
         // carry one for a light map snell does not use keep their meshes as before).
-        let wants_uv1 = material::read(&prim.material())
-            .textures()
-            .any(|t| t.texcoord == 1);
+        let wants_uv1 = prim
+            .material()
+            .index()
+            .and_then(|i| materials.get(i))
+            .is_some_and(|m| m.textures().any(|t| t.texcoord == 1));
         check_layouts(&prim, wants_uv1).map_err(|m| format!("{name}: primitive {p}: {m}"))?;
         let reader = prim.reader(|b| buffers.get(b.index()).map(|d| &d.0[..]));
         let Some(positions) = reader.read_positions() else {
