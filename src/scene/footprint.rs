@@ -66,8 +66,9 @@ impl RayDifferentials {
 /// if it is a mesh with a second set.
 pub(super) fn second_uv_change(o: &Object, prim: u32, dp: [Vec3A; 2]) -> Option<[Vec2; 2]> {
     match &o.shape {
-        Shape::Mesh(m) if m.has_second_uv() => {
-            Some(dp.map(|d| m.second_uv_change(prim, d).unwrap_or(Vec2::ZERO)))
+        Shape::Mesh(m) => {
+            let [x, y] = dp.map(|d| m.second_uv_change(prim, d));
+            Some([x?, y?])
         }
         _ => None,
     }

@@ -761,14 +761,17 @@ impl Builder<'_> {
             })
             .collect();
         let transparent_objects = (0..objects.len()).filter(|&i| transparent[i]).collect();
+        // Whether a texture one of object `o`'s materials reads is one `like` says.
+        let reads = |o: &Object, like: &dyn Fn(&Texture) -> bool| {
+            materials_of(o)
+                .iter()
+                .any(|&m| materials[m].textures().iter().any(|&t| like(&textures[t])))
+        };
         let needs_uv = objects
             .iter()
             .map(|o| {
-                materials_of(o).iter().any(|&m| {
-                    materials[m].textures().iter().any(|&t| {
-                        let t = &textures[t];
-                        !matches!(t.pattern, Pattern::Solid(_)) && t.mapping.reads_shape_uv()
-                    })
+                reads(o, &|t| {
+                    !matches!(t.pattern, Pattern::Solid(_)) && t.mapping.reads_shape_uv()
                 })
             })
             .collect();
@@ -776,12 +779,7 @@ impl Builder<'_> {
             .iter()
             .map(|o| {
                 matches!(&o.shape, Shape::Mesh(m) if m.has_second_uv())
-                    && materials_of(o).iter().any(|&m| {
-                        materials[m]
-                            .textures()
-                            .iter()
-                            .any(|&t| matches!(textures[t].mapping, Mapping::SecondUv { .. }))
-                    })
+                    && reads(o, &|t| matches!(t.mapping, Mapping::SecondUv { .. }))
             })
             .collect();
         let textured = materials
