@@ -55,7 +55,7 @@ impl MetallicMix {
 #[cfg(test)]
 mod tests {
     use super::super::microfacet::Ggx;
-    use super::super::{Bsdf, ConductorFresnel, harness, internal_diffuse_reflectance};
+    use super::super::{Bsdf, ConductorFresnel, harness};
     use super::*;
 
     fn mix(metallic: f32, alpha: f32) -> Bsdf {
@@ -66,12 +66,7 @@ mod tests {
                 distribution: Ggx::isotropic(alpha),
                 tint: base,
             },
-            dielectric: Plastic {
-                r: base,
-                eta: 1.5,
-                fdr_int: internal_diffuse_reflectance(1.5),
-                distribution: Ggx::isotropic(alpha),
-            },
+            dielectric: Plastic::new(base, 1.5, Ggx::isotropic(alpha)),
             metallic,
         })
     }

@@ -1,7 +1,8 @@
-//! Measured complex indices of refraction of common metals, as linear-RGB fits (the values
-//! renderers such as Mitsuba and Tungsten use for their named conductors, from measured
-//! spectra integrated against the sRGB primaries), so a scene can say `"Au"` instead of six
-//! numbers.
+//! Measured complex indices of refraction of common metals in linear RGB, so a scene can
+//! say `"Au"` instead of six numbers: the values Mitsuba 3.9.1's `scalar_rgb` variant gives
+//! its conductors of these names (their measured spectra integrated against the sRGB
+//! primaries), as it prints them (`mi.traverse(mi.load_dict({'type': 'conductor',
+//! 'material': 'Au'}))`); src/bsdf/mitsuba_tests.rs checks the reflectance they give.
 
 use crate::math::Color;
 
@@ -9,21 +10,18 @@ use crate::math::Color;
 pub fn named(name: &str) -> Option<(Color, Color)> {
     let (eta, k) = match name {
         "Au" => (
-            [0.143_119, 0.374_957, 1.442_48],
-            [3.983_16, 2.385_72, 1.603_22],
+            [0.143_036, 0.375_307, 1.442_05],
+            [3.983, 2.385_56, 1.603_36],
         ),
         "Ag" => (
-            [0.155_265, 0.116_723, 0.138_342],
-            [4.828_35, 3.122_25, 2.146_96],
+            [0.155_276, 0.116_728, 0.138_388],
+            [4.828_35, 3.122_22, 2.146_9],
         ),
         "Cu" => (
-            [0.200_438, 0.924_033, 1.102_21],
-            [3.912_95, 2.452_85, 2.142_19],
+            [0.201_005, 0.923_75, 1.102_22],
+            [3.913_26, 2.453_05, 2.142_09],
         ),
-        "Al" => (
-            [1.657_46, 0.880_369, 0.521_229],
-            [9.223_87, 6.269_52, 4.837],
-        ),
+        "Al" => ([1.657_5, 0.880_405, 0.521_244], [9.223_81, 6.269_5, 4.837]),
         _ => return None,
     };
     Some((Color::from(eta), Color::from(k)))

@@ -71,9 +71,12 @@ impl Ggx {
         1.0 / (1.0 + self.lambda(w))
     }
 
-    /// The fraction visible from both `wo` and `wi` (height-correlated Smith).
+    /// The fraction visible from both `wo` and `wi`: Smith's separable form, `G1(wo)
+    /// G1(wi)`, as Mitsuba 3's microfacet BSDFs take it (pbrt-v4's height-correlated form
+    /// is a little larger at grazing angles), so that snell's rough materials evaluate as
+    /// their Mitsuba namesakes (src/bsdf/mitsuba_tests.rs).
     pub fn g(&self, wo: Vec3A, wi: Vec3A) -> f32 {
-        1.0 / (1.0 + self.lambda(wo) + self.lambda(wi))
+        self.g1(wo) * self.g1(wi)
     }
 
     /// The density of the normals visible from `w` (`w.z > 0`): `G1(w) / cos theta * D(wm)

@@ -4,6 +4,7 @@
 //! scene types: a material builds a [`Bsdf`] at a hit from its textured parameters, and each
 //! variant is tested on its own (chi-square of its sampling, energy, reciprocity).
 
+pub mod coat;
 mod conductor;
 mod dielectric;
 pub mod fresnel;
@@ -12,7 +13,7 @@ mod metallic;
 pub mod metals;
 pub mod microfacet;
 mod phong;
-mod plastic;
+pub mod plastic;
 mod thin_dielectric;
 
 pub use conductor::{Conductor, ConductorFresnel};
@@ -20,7 +21,7 @@ pub use dielectric::Dielectric;
 pub use lambert::Lambert;
 pub use metallic::MetallicMix;
 pub use phong::{PhongBase, PhongMix};
-pub use plastic::{Plastic, internal_diffuse_reflectance};
+pub use plastic::{Coat, Plastic, internal_diffuse_reflectance};
 pub use thin_dielectric::ThinDielectric;
 
 use crate::math::{Color, Vec2, Vec3A};
@@ -213,3 +214,5 @@ pub(crate) fn same_hemisphere(a: Vec3A, b: Vec3A) -> bool {
 
 #[cfg(test)]
 pub(crate) mod harness;
+#[cfg(test)]
+mod mitsuba_tests;

@@ -127,7 +127,7 @@ impl PhongMix {
 #[cfg(test)]
 mod tests {
     use super::super::microfacet::Ggx;
-    use super::super::{Bsdf, ConductorFresnel, harness, internal_diffuse_reflectance};
+    use super::super::{Bsdf, Coat, ConductorFresnel, harness, internal_diffuse_reflectance};
     use super::*;
 
     fn mix(highlight: bool, reflectivity: f32, transparency: f32) -> Bsdf {
@@ -136,8 +136,10 @@ mod tests {
             PhongBase::Plastic(Plastic {
                 r,
                 eta: 1.5,
-                fdr_int: internal_diffuse_reflectance(1.5),
                 distribution: Ggx::isotropic(0.2),
+                coat: Coat::Smooth {
+                    fdr_int: internal_diffuse_reflectance(1.5),
+                },
             })
         } else {
             PhongBase::Lambert(Lambert { r })

@@ -1,10 +1,14 @@
 //! Plastic: a diffuse base under a dielectric coat, smooth (a delta reflection on top) or
-//! rough (GGX reflection on top). As Mitsuba's `plastic` and `roughplastic` (their default,
-//! linear form): light the coat lets in, `1 - F(cos_i)`, scatters diffusely in the base and
-//! leaves through the coat, `1 - F(cos_o)`, refraction spreading it by `1 / eta^2`; the light
-//! bounced back by the coat's inside is accounted for by `1 / (1 - F_dr,int)`, so that the
-//! whole reflects `F(cos_o) + (1 - F(cos_o)) R` under a smooth coat.
+//! rough (GGX reflection on top), as Mitsuba 3's `plastic` and `roughplastic` in their
+//! default, linear form. Light the coat lets in scatters diffusely in the base and leaves
+//! through the coat, refraction spreading it by `1 / eta^2`; the light the coat's inside
+//! bounces back is accounted for by `1 / (1 - R_int)`. A smooth coat lets in `1 - F(cos)`
+//! and bounces back the smooth boundary's share of diffuse light; a rough one lets in its
+//! tabulated transmittance and bounces back its own share ([`super::coat`]), so that the
+//! whole conserves energy at every roughness. src/bsdf/mitsuba_tests.rs checks both against
+//! Mitsuba's own values.
 
+use super::coat::RoughCoat;
 use super::dielectric::fresnel;
 use super::microfacet::Ggx;
 use super::{BsdfSample, Lobe, front, same_hemisphere, to_side_of};
@@ -24,6 +28,21 @@ pub fn internal_diffuse_reflectance(eta: f32) -> f32 {
     (2.0 * sum / n as f64) as f32
 }
 
+/// How the coat passes light to and from the base.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Coat {
+    /// As a smooth boundary: it lets in `1 - F(cos)`, and reflects `fdr_int` of the
+    /// diffuse light under it ([`internal_diffuse_reflectance`]). A smooth coat's, and the
+    /// cheaper reading of a rough coat that a Phong material's path-traced base takes
+    /// (`material::phong`).
+    Smooth {
+        /// The boundary's internal diffuse reflectance.
+        fdr_int: f32,
+    },
+    /// A rough boundary, by its tables.
+    Rough(RoughCoat),
+}
+
 /// A coated diffuse surface.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Plastic {
@@ -31,27 +50,68 @@ pub struct Plastic {
     pub r: Color,
     /// The coat's index over the outside's.
     pub eta: f32,
-    /// [`internal_diffuse_reflectance`] of `eta`.
-    pub fdr_int: f32,
     /// The coat's roughness; smooth when [`Ggx::is_smooth`].
     pub distribution: Ggx,
+    /// What the coat lets through (for `plastic` materials, [`Coat::Rough`] exactly when
+    /// the distribution is rough).
+    pub coat: Coat,
 }
 
 impl Plastic {
+    /// A base of reflectance `r` under a coat of index `eta` and roughness `distribution`,
+    /// its tables looked up for this one roughness (materials keep theirs: see
+    /// `material::plastic`).
+    pub fn new(r: Color, eta: f32, distribution: Ggx) -> Self {
+        let coat = if distribution.is_smooth() {
+            Coat::Smooth {
+                fdr_int: internal_diffuse_reflectance(eta),
+            }
+        } else {
+            let alpha = distribution.ax;
+            Coat::Rough(super::coat::CoatSource::new(eta, Some(alpha)).at(alpha))
+        };
+        Plastic {
+            r,
+            eta,
+            distribution,
+            coat,
+        }
+    }
+
+    /// The fraction of light arriving at `|cos| = cos` that the coat lets in.
+    #[inline]
+    fn transmittance(&self, cos: f32) -> f32 {
+        match &self.coat {
+            Coat::Smooth { .. } => 1.0 - fresnel(cos.abs(), self.eta),
+            Coat::Rough(c) => c.transmittance(cos),
+        }
+    }
+
+    fn internal_reflectance(&self) -> f32 {
+        match &self.coat {
+            Coat::Smooth { fdr_int } => *fdr_int,
+            Coat::Rough(c) => c.internal_reflectance(),
+        }
+    }
+
     /// The probability of sampling the coat's reflection at `cos_o` (the rest goes to the
-    /// base), weighted by how bright each is.
+    /// base): what the coat reflects and what it lets in, weighted by `1` and the base's
+    /// mean reflectance.
     fn coat_probability(&self, cos_o: f32) -> f32 {
-        let f = fresnel(cos_o.abs(), self.eta);
+        let t = self.transmittance(cos_o);
         let w_coat = 1.0 / (1.0 + self.r.element_sum() / 3.0);
-        let p = f * w_coat;
-        p / (p + (1.0 - f) * (1.0 - w_coat))
+        let p = (1.0 - t) * w_coat;
+        p / (p + t * (1.0 - w_coat))
     }
 
     fn diffuse(&self, wo: Vec3A, wi: Vec3A) -> Color {
-        let (fo, fi) = (fresnel(wo.z.abs(), self.eta), fresnel(wi.z.abs(), self.eta));
+        let (to, ti) = (self.transmittance(wo.z), self.transmittance(wi.z));
         self.r
-            * ((1.0 - fi) * (1.0 - fo)
-                / (std::f32::consts::PI * self.eta * self.eta * (1.0 - self.fdr_int)))
+            * (to * ti
+                / (std::f32::consts::PI
+                    * self.eta
+                    * self.eta
+                    * (1.0 - self.internal_reflectance())))
     }
 
     /// The rough coat's value and density.
@@ -135,12 +195,7 @@ mod tests {
     use super::*;
 
     fn plastic(r: f32, alpha: f32) -> Plastic {
-        Plastic {
-            r: Color::splat(r),
-            eta: 1.5,
-            fdr_int: internal_diffuse_reflectance(1.5),
-            distribution: Ggx::isotropic(alpha),
-        }
+        Plastic::new(Color::splat(r), 1.5, Ggx::isotropic(alpha))
     }
 
     /// From inside glass of 1.5 the boundary returns 59.6 % of diffuse light (the known
@@ -178,9 +233,11 @@ mod tests {
         }
     }
 
+    /// A white plastic, rough or smooth, never reflects more than it receives (a furnace
+    /// for one bounce), and is reciprocal.
     #[test]
     fn a_rough_coat_conserves_energy_and_is_reciprocal() {
-        for alpha in [0.1f32, 0.5] {
+        for alpha in [0.05f32, 0.1, 0.5, 1.0] {
             harness::energy_and_reciprocity(
                 &format!("plastic, alpha {alpha}"),
                 &Bsdf::Plastic(plastic(1.0, alpha)),

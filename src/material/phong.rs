@@ -3,13 +3,16 @@
 //! ([`PhongMix`]): glass of index `ior` with weight `transparency`, a perfect mirror with
 //! weight `(1 - transparency) * reflectivity`, and for the rest the colour times `diffuse`
 //! (clamped to 1) as Lambertian reflection, under a clear coat of index 1.5 whose roughness
-//! matches `shininess` where `specular` is not black. `ambient` is Whitted's only: the path
+//! matches `shininess` where `specular` is not black. The coat passes light to the base as
+//! a smooth boundary would (`Coat::Smooth`), not by a rough coat's tables as `plastic` does:
+//! Phong's terms name no physical coat to match, and the tables would cost every scene of
+//! Phong materials their making. `ambient` is Whitted's only: the path
 //! tracer computes the light that ambient stands in for.
 
 use super::{Material, PhongTerms, alpha_of};
 use crate::bsdf::microfacet::Ggx;
 use crate::bsdf::{
-    Bsdf, Conductor, ConductorFresnel, Dielectric, Lambert, PhongBase, PhongMix, Plastic,
+    Bsdf, Coat, Conductor, ConductorFresnel, Dielectric, Lambert, PhongBase, PhongMix, Plastic,
     internal_diffuse_reflectance,
 };
 use crate::math::Color;
@@ -24,8 +27,10 @@ pub fn bsdf(m: &Material, terms: &PhongTerms, base: Color) -> Bsdf {
         PhongBase::Plastic(Plastic {
             r,
             eta: COAT_IOR,
-            fdr_int: coat_fdr(),
             distribution: Ggx::isotropic(alpha_of(terms.shininess)),
+            coat: Coat::Smooth {
+                fdr_int: coat_fdr(),
+            },
         })
     } else {
         PhongBase::Lambert(Lambert { r })

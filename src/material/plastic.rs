@@ -4,7 +4,9 @@
 //! at normal incidence.
 
 use super::{Emission, Material, PhongTerms, Scalar, Surface, shininess_of};
+use crate::bsdf::coat::CoatSource;
 use crate::bsdf::microfacet::Ggx;
+use crate::bsdf::plastic::Coat;
 use crate::bsdf::{self, Bsdf, internal_diffuse_reflectance};
 use crate::math::Color;
 use crate::texture::{Texture, TexturePoint};
@@ -14,16 +16,39 @@ use crate::texture::{Texture, TexturePoint};
 pub struct Plastic {
     /// GGX alpha of the coat.
     pub roughness: Scalar,
-    /// The coat's internal diffuse reflectance, worked out once.
+    /// The smooth coat's internal diffuse reflectance, worked out once.
     pub fdr_int: f32,
+    /// The rough coat's tables; `None` where the coat is smooth everywhere, or passes light
+    /// as a smooth one does ([`Plastic::fresnel_coat`]).
+    pub coat: Option<CoatSource>,
 }
 
 impl Plastic {
-    /// A plastic of roughness `roughness` under a coat of index `ior`.
+    /// A plastic of roughness `roughness` under a coat of index `ior`, as Mitsuba's
+    /// `plastic` and `roughplastic`: a rough coat passes light by its tables.
     pub fn new(roughness: Scalar, ior: f32) -> Self {
+        let coat = match roughness {
+            Scalar::Value(a) if Ggx::isotropic(a.clamp(0.0, 1.0)).is_smooth() => None,
+            Scalar::Value(a) => Some(CoatSource::new(ior, Some(a.clamp(0.0, 1.0)))),
+            Scalar::Texture(_) => Some(CoatSource::new(ior, None)),
+        };
         Plastic {
             roughness,
             fdr_int: internal_diffuse_reflectance(ior),
+            coat,
+        }
+    }
+
+    /// A plastic whose coat lets light in and out as a smooth boundary of index `ior`
+    /// does (`1 - F`), whatever its roughness: glTF's dielectric (its BRDF weighs the diffuse
+    /// base by `1 - F` and loses no light to the coat's roughness) and OBJ's plastic. A
+    /// rough coat of Mitsuba's kind keeps less of the light (a white one at roughness 1
+    /// returns about a third of it), which is not how glTF's models are meant to look.
+    pub fn fresnel_coat(roughness: Scalar, ior: f32) -> Self {
+        Plastic {
+            roughness,
+            fdr_int: internal_diffuse_reflectance(ior),
+            coat: None,
         }
     }
 
@@ -64,11 +89,19 @@ impl Plastic {
         textures: &[Texture],
         p: &TexturePoint,
     ) -> bsdf::Plastic {
+        let alpha = self.roughness.at(textures, p).clamp(0.0, 1.0);
+        let distribution = Ggx::isotropic(alpha);
+        let coat = match self.coat {
+            Some(source) if !distribution.is_smooth() => Coat::Rough(source.at(alpha)),
+            _ => Coat::Smooth {
+                fdr_int: self.fdr_int,
+            },
+        };
         bsdf::Plastic {
             r: base.clamp(Color::ZERO, Color::ONE),
             eta: m.ior,
-            fdr_int: self.fdr_int,
-            distribution: Ggx::isotropic(self.roughness.at(textures, p).clamp(0.0, 1.0)),
+            distribution,
+            coat,
         }
     }
 }

@@ -13,6 +13,7 @@ mod frame;
 pub mod keyframes;
 mod offset;
 pub mod poly;
+pub mod quadrature;
 mod rng;
 pub mod sampling;
 pub mod spectrum;

@@ -127,9 +127,8 @@ impl Builder<'_> {
             }
             .material(texture, ior, Color::ZERO, alpha, emission),
             MtlType::Pane => thin::material(texture, ior, emission),
-            MtlType::Plastic(alpha) => {
-                Plastic::new(Scalar::Value(alpha), ior).material(texture, ior, alpha, emission)
-            }
+            MtlType::Plastic(alpha) => Plastic::fresnel_coat(Scalar::Value(alpha), ior)
+                .material(texture, ior, alpha, emission),
             MtlType::Phong => {
                 let highlight = !matches!(illum, 0 | 1);
                 let ks = m.ks.map_or(Color::ZERO, rgb);

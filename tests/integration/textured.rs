@@ -129,7 +129,9 @@ fn phong_terms_read_their_textures() {
 }
 
 /// `emission` (and a rough `roughness`, whose texture a solid-coloured material once read
-/// without the uv it needs) under both integrators; a conductor's `eta` and `k`.
+/// without the uv it needs) under both integrators; a conductor's `eta` and `k`. (A
+/// plastic's textured roughness reads its coat's tables at knots of roughness, not the
+/// exact table of a constant: [`a_plastic_reads_a_textured_roughness_within_its_knots`].)
 #[test]
 fn emission_roughness_and_index_read_their_textures() {
     let both = ["whitted", "path"];
@@ -140,14 +142,14 @@ fn emission_roughness_and_index_read_their_textures() {
         "type = \"diffuse\"\ncolor = 0.5",
         &both,
     );
+    let gold_k = "k = [3.0, 2.4, 1.8]";
     check_key(
         "roughness",
         "0.0625",
         "0.5625",
-        "type = \"plastic\"\ncolor = 0.5",
+        &format!("type = \"conductor\"\neta = [0.2, 0.4, 1.4]\n{gold_k}"),
         &["path"],
     );
-    let gold_k = "k = [3.0, 2.4, 1.8]";
     check_key(
         "eta",
         "[0.15, 0.4, 1.4]",
@@ -162,6 +164,37 @@ fn emission_roughness_and_index_read_their_textures() {
         "type = \"conductor\"\nroughness = 0.2\neta = [0.2, 0.4, 1.4]",
         &["path"],
     );
+}
+
+/// A plastic whose roughness comes from a uniform texture renders as the constant does,
+/// within what interpolating its coat's tables between knots of roughness allows (0.6 %),
+/// and a texture of two roughnesses gives two looks.
+#[test]
+fn a_plastic_reads_a_textured_roughness_within_its_knots() {
+    let base = "type = \"plastic\"\ncolor = 0.5";
+    let mean = |value: &str, textures: &str| {
+        let keys = format!("{base}\nroughness = {value}");
+        let img = image(&scene("path", &keys, textures, true), &PathTracer);
+        img.pixels
+            .iter()
+            .map(|c| c.element_sum() as f64)
+            .sum::<f64>()
+    };
+    let mut checked = 0;
+    for (a, b) in [("0.0625", "0.5625"), ("0.2", "0.03")] {
+        let (constant, uniform) = (mean(a, ""), mean("\"same\"", &textures(a, b)));
+        assert!(
+            (uniform - constant).abs() < 0.006 * constant,
+            "roughness {a}: {uniform} from a texture, {constant} as a constant"
+        );
+        let other = mean(b, "");
+        assert!(
+            (other - constant).abs() > 0.01 * constant,
+            "{a} and {b} look alike"
+        );
+        checked += 1;
+    }
+    assert_eq!(checked, 2);
 }
 
 /// A rectangle light whose emission is stripes of 0 and 4 lights the floor as a rectangle

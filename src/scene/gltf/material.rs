@@ -230,7 +230,7 @@ pub(in crate::scene) fn pbr_material(
         }
         .material(texture, ior, Color::ZERO, alpha, emission),
         _ if partly => Metallic {
-            dielectric: Plastic::new(alpha_param, ior),
+            dielectric: Plastic::fresnel_coat(alpha_param, ior),
             metallic,
         }
         .material(
@@ -247,7 +247,9 @@ pub(in crate::scene) fn pbr_material(
             roughness: alpha_param,
         }
         .material(texture, base, alpha, emission),
-        PbrType::Plastic => Plastic::new(alpha_param, ior).material(texture, ior, alpha, emission),
+        PbrType::Plastic => {
+            Plastic::fresnel_coat(alpha_param, ior).material(texture, ior, alpha, emission)
+        }
     };
     out.detail = detail;
     out.cutout = cutout;
