@@ -50,6 +50,8 @@ pub struct EnvironmentMap {
     density: Distribution2d,
     /// The radiance averaged over all directions.
     mean: Color,
+    /// The image's file as the scene names it, where it came from one.
+    pub file: Option<String>,
 }
 
 /// A direction toward the environment chosen for a point.
@@ -119,6 +121,7 @@ impl EnvironmentMap {
             } else {
                 Color::ZERO
             },
+            file: None,
         }
     }
 
@@ -226,6 +229,24 @@ impl Environment {
             EnvironmentSource::Constant(c) => (*c, crate::math::sampling::UNIFORM_SPHERE_PDF),
             EnvironmentSource::Map(m) => m.radiance_pdf(dir),
             EnvironmentSource::Sky(s) => s.radiance_pdf(dir),
+        }
+    }
+
+    /// What it is, for `snell check`: `constant [r, g, b]`, `image FILE, W x H` or `sky, the
+    /// sun E° above the horizon`.
+    pub fn describe(&self) -> String {
+        match &self.source {
+            EnvironmentSource::Constant(c) => format!("constant [{}, {}, {}]", c.x, c.y, c.z),
+            EnvironmentSource::Map(m) => format!(
+                "image {}, {} x {}",
+                m.file.as_deref().unwrap_or("(made in memory)"),
+                m.image.width(),
+                m.image.height()
+            ),
+            EnvironmentSource::Sky(s) => match s.sun_elevation() {
+                Some(e) => format!("sky, the sun {e:.1}° above the horizon"),
+                None => "sky, without its sun".into(),
+            },
         }
     }
 

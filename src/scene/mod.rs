@@ -635,20 +635,31 @@ impl Scene {
         let kinds: Vec<String> = kinds.iter().map(|(k, n)| format!("{n} {k}")).collect();
         let mut lights: BTreeMap<&str, usize> = BTreeMap::new();
         for l in &self.lights {
-            let k = match l {
-                Light::Point { .. } => "point",
-                Light::Directional { .. } => "directional",
-                Light::Spot { .. } => "spot",
-            };
-            *lights.entry(k).or_default() += 1;
+            *lights.entry(l.kind_name()).or_default() += 1;
         }
-        let lights: Vec<String> = lights.iter().map(|(k, n)| format!("{n} {k}")).collect();
+        if !self.area_lights.is_empty() {
+            lights.insert("area", self.area_lights.len());
+        }
+        let count = self.lights.len() + self.area_lights.len();
+        let lights = if count == 0 {
+            "none".to_string()
+        } else {
+            let kinds: Vec<String> = lights.iter().map(|(k, n)| format!("{n} {k}")).collect();
+            format!("{count} ({})", kinds.join(", "))
+        };
         let s = &self.settings;
         // Lines for an animation and for meshes, where the scene has them.
         let mut extra = String::new();
         let st = &self.stats;
+        if let Some(env) = &self.environment {
+            extra += &format!(
+                "\nenvironment: {}; {:.0} % of light samples",
+                env.describe(),
+                100.0 * self.light_sampler.environment_probability()
+            );
+        }
         if let Some(a) = self.animation {
-            extra = format!(
+            extra += &format!(
                 "\nanimation: {} frames at {} frames a second ({:.2} s)",
                 a.frames,
                 a.fps,
@@ -672,7 +683,7 @@ impl Scene {
             }
         }
         format!(
-            "image:     {} x {}, {} spp, max depth {}, seed {}\nobjects:   {} ({})\nlights:    {} ({})\nmaterials: {}\ntextures:  {}{}{extra}",
+            "image:     {} x {}, {} spp, max depth {}, seed {}\nobjects:   {} ({})\nlights:    {lights}\nmaterials: {}\ntextures:  {}{}{extra}",
             s.width,
             s.height,
             s.spp,
@@ -680,8 +691,6 @@ impl Scene {
             s.seed,
             self.objects.len(),
             kinds.join(", "),
-            self.lights.len(),
-            lights.join(", "),
             self.material_names.len(),
             self.texture_names.len(),
             if self.texture_names.is_empty() {

@@ -327,6 +327,58 @@ fn check_counts_each_meshs_triangles_loaded_and_placed() {
     assert!(!stdout(&expect(&["check", &scene], &dir, 0)).contains("meshes:"));
 }
 
+/// `check` names the environment a scene is lit by (its image, colour or sun) and the share
+/// of light samples it gets, and counts emitting objects among the lights.
+#[test]
+fn check_names_the_environment_and_the_area_lights() {
+    let dir = scratch("check-env");
+    let hdr = Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/env/studio.hdr");
+    let only_env = GOOD.replace(
+        "[[lights]]\ntype = \"point\"\nposition = [0, 5, 0]\n",
+        &format!(
+            "[environment]\ntype = \"image\"\nfile = {:?}\n",
+            hdr.display().to_string()
+        ),
+    );
+    let out = stdout(&expect(
+        &["check", &write_scene(&dir, "e.toml", &only_env)],
+        &dir,
+        0,
+    ));
+    assert!(out.contains("lights:    none\n"), "{out}");
+    assert!(
+        out.contains(&format!(
+            "environment: image {}, 512 x 256; 100 % of light samples",
+            hdr.display()
+        )),
+        "{out}"
+    );
+    let mixed = GOOD.to_string()
+        + "[environment]\ntype = \"constant\"\ncolor = 0.5\n\
+           [materials.lamp]\ncolor = 0\nemission = 4\n\
+           [[objects]]\ntype = \"sphere\"\ncenter = [0, 3, -3]\nradius = 0.5\nmaterial = \"lamp\"\n";
+    let out = stdout(&expect(
+        &["check", &write_scene(&dir, "m.toml", &mixed)],
+        &dir,
+        0,
+    ));
+    assert!(out.contains("lights:    2 (1 area, 1 point)\n"), "{out}");
+    assert!(
+        out.contains("environment: constant [0.5, 0.5, 0.5]; "),
+        "{out}"
+    );
+    let sky = GOOD.to_string() + "[environment]\ntype = \"sky\"\nsun_elevation = 30\n";
+    let out = stdout(&expect(
+        &["check", &write_scene(&dir, "s.toml", &sky)],
+        &dir,
+        0,
+    ));
+    assert!(
+        out.contains("environment: sky, the sun 30.0° above the horizon; "),
+        "{out}"
+    );
+}
+
 #[test]
 fn check_prints_a_summary_and_warnings() {
     let dir = scratch("check");

@@ -104,6 +104,13 @@ impl Sky {
         }
     }
 
+    /// The sun's height above the horizon in degrees, where the sky has a sun.
+    pub fn sun_elevation(&self) -> Option<f32> {
+        self.sun
+            .as_ref()
+            .map(|s| s.axis().y.clamp(-1.0, 1.0).asin().to_degrees())
+    }
+
     /// Radiance arriving from direction `dir` (unit, world space).
     #[inline]
     pub fn radiance(&self, dir: Vec3A) -> Color {

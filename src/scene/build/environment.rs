@@ -36,12 +36,14 @@ impl Builder<'_> {
                 // Float files (.hdr, .exr) are linear whatever this says; 8-bit ones are
                 // photographs, sRGB.
                 match self.image(&full, ColorSpace::Srgb, false) {
-                    Ok(img) => Some(Environment {
-                        source: EnvironmentSource::Map(Box::new(EnvironmentMap::new(
-                            img, rotate, scale,
-                        ))),
-                        visible: *visible,
-                    }),
+                    Ok(img) => {
+                        let mut map = EnvironmentMap::new(img, rotate, scale);
+                        map.file = Some(file.clone());
+                        Some(Environment {
+                            source: EnvironmentSource::Map(Box::new(map)),
+                            visible: *visible,
+                        })
+                    }
                     Err(e) => {
                         self.error_help(
                             path.key("file"),
