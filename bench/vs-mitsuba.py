@@ -41,8 +41,8 @@ How to run
 
 DRJIT_LIBLLVM_PATH is set to /usr/lib/x86_64-linux-gnu/libLLVM-19.so when it is unset and that
 file exists.  EXRs are read with mitsuba.Bitmap (as RGB; alpha dropped, one channel broadcast).
-The metric is compare() from compare_exr.py (imported from --peers, default /work/shared/peers,
-when there; otherwise the copy below).  This script is a manual benchmark, not run by CI.
+The metric is compare() from compare_exr.py (imported from --peers, default ../shared/peers
+beside the checkout, when there; otherwise the copy below).  This script is a manual benchmark, not run by CI.
 """
 import argparse
 import math
@@ -65,7 +65,7 @@ REF_SEED_BASE = 1000
 
 
 def compare_fallback(a, b):
-    """Copy of the core of compare() in /work/shared/peers/compare_exr.py (B is the reference)."""
+    """Copy of the core of compare() in ../shared/peers/compare_exr.py (B is the reference)."""
     if a.shape != b.shape:
         raise SystemExit(f'shape mismatch: {a.shape} vs {b.shape}')
     d = a - b
@@ -205,7 +205,8 @@ def main():
     ap.add_argument('--repeats', type=int, default=1, help='timed repeats per measurement (the best is kept)')
     ap.add_argument('--threads', type=int, default=0, help="Dr.Jit thread count (default: Dr.Jit's own, all cores)")
     ap.add_argument('--workdir', default=os.path.join(REPO, 'target', 'vs-mitsuba'), help='where snell images and the Mitsuba 64-spp image go')
-    ap.add_argument('--peers', default=os.environ.get('SNELL_PEERS', '/work/shared/peers'), help='folder holding compare_exr.py')
+    ap.add_argument('--peers', default=os.environ.get('SNELL_PEERS', os.path.join(REPO, '..', 'shared', 'peers')),
+                    help='folder holding compare_exr.py (default: ../shared/peers beside the checkout)')
     ap.add_argument('--skip-snell', action='store_true', help='skip (b); (c) still runs if --snell-ref exists')
     args = ap.parse_args()
 
