@@ -342,40 +342,68 @@ mod tests {
         assert_vec_close(b.max, Vec3A::new(0.5, 1.0, 1.0), 1e-6);
     }
 
-    proptest! {
-        /// Random rays against a cube minus two spheres: the hit is the first point along
-        /// the ray, sampled finely, where `contains` changes, and none is missed.
-        #[test]
-        fn hits_agree_with_marching_contains(
-            o in prop::array::uniform3(-4.0f32..4.0),
-            target in prop::array::uniform3(-1.2f32..1.2),
-        ) {
-            let s = csg(
-                CsgOp::Difference,
-                vec![cube(), sphere([0.0, 0.0, 1.0], 0.6), sphere([1.0, 1.0, 0.0], 0.7)],
-            );
-            let o = Vec3A::from(o);
-            let d = (Vec3A::from(target) - o).normalize_or_zero();
-            prop_assume!(d != Vec3A::ZERO);
-            let ray = Ray::new(o, d);
-            let start = s.contains(o);
-            let steps = 20_000;
-            let want = (1..=steps)
-                .map(|k| 12.0 * k as f32 / steps as f32)
-                .find(|&t| s.contains(ray.at(t)) != start);
-            let got = s.intersect(&ray, f32::INFINITY).map(|h| h.t);
-            // A sliver: the other side lasts under 3e-3 along the ray (a graze of an edge
-            // or of a sphere), which the steps may or may not catch.
-            let sliver = |t: f32| s.contains(ray.at(t + 3e-3)) == start;
-            match (got, want) {
-                (Some(g), Some(w)) => prop_assert!(
-                    (g - w).abs() < 2e-3 || (g < w && sliver(g)),
-                    "{g} vs {w}"
-                ),
-                (None, Some(w)) => prop_assert!(sliver(w), "missed the crossing at {w}"),
-                (Some(g), None) => prop_assert!(sliver(g), "a crossing at {g} that is not"),
-                (None, None) => {}
-            }
+    /// Random rays against a cube minus two spheres: the hit is the first point along the
+    /// ray, sampled finely, where `contains` changes, and none is missed. The runner rather
+    /// than `proptest!`, so that after the last case the test can count the rays that hit:
+    /// a miss of both the solid and the marching checks nothing.
+    #[test]
+    fn hits_agree_with_marching_contains() {
+        use proptest::test_runner::{Config, TestRunner};
+        use std::cell::Cell;
+        let (cases, hits) = (Cell::new(0u32), Cell::new(0u32));
+        let mut runner = TestRunner::new(Config {
+            source_file: Some(file!()),
+            ..Config::default()
+        });
+        let result = runner.run(
+            &(
+                prop::array::uniform3(-4.0f32..4.0),
+                prop::array::uniform3(-1.2f32..1.2),
+            ),
+            |(o, target)| {
+                let s = csg(
+                    CsgOp::Difference,
+                    vec![
+                        cube(),
+                        sphere([0.0, 0.0, 1.0], 0.6),
+                        sphere([1.0, 1.0, 0.0], 0.7),
+                    ],
+                );
+                let o = Vec3A::from(o);
+                let d = (Vec3A::from(target) - o).normalize_or_zero();
+                prop_assume!(d != Vec3A::ZERO);
+                cases.set(cases.get() + 1);
+                let ray = Ray::new(o, d);
+                let start = s.contains(o);
+                let steps = 20_000;
+                let want = (1..=steps)
+                    .map(|k| 12.0 * k as f32 / steps as f32)
+                    .find(|&t| s.contains(ray.at(t)) != start);
+                let got = s.intersect(&ray, f32::INFINITY).map(|h| h.t);
+                hits.set(hits.get() + u32::from(got.is_some()));
+                // A sliver: the other side lasts under 3e-3 along the ray (a graze of an edge
+                // or of a sphere), which the steps may or may not catch.
+                let sliver = |t: f32| s.contains(ray.at(t + 3e-3)) == start;
+                match (got, want) {
+                    (Some(g), Some(w)) => {
+                        prop_assert!((g - w).abs() < 2e-3 || (g < w && sliver(g)), "{g} vs {w}")
+                    }
+                    (None, Some(w)) => prop_assert!(sliver(w), "missed the crossing at {w}"),
+                    (Some(g), None) => prop_assert!(sliver(g), "a crossing at {g} that is not"),
+                    (None, None) => {}
+                }
+                Ok(())
+            },
+        );
+        if let Err(e) = result {
+            panic!("{e}\n{runner}");
         }
+        // Every case the runner asked for (and any failure saved from an earlier run).
+        let (cases, hits) = (cases.get(), hits.get());
+        assert!(cases >= runner.config().cases, "{cases} cases");
+        // Half the targets lie inside the solid (the cube is 58 % of their box, the two
+        // hollows take a tenth of it), and a ray from outside toward one of them must cross
+        // the surface: over half the rays hit. A quarter leaves a margin no seed comes near.
+        assert!(hits >= cases / 4, "{hits} of {cases} rays hit");
     }
 }

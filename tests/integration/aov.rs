@@ -44,6 +44,9 @@ fn views_of_the_seed_scene_show_what_they_claim() {
     let (side, cap): (Vec<usize>, Vec<usize>) =
         cyl.iter().partition(|&&i| b.normal[i].y.abs() < 1e-4);
     assert!(side.len() > 20, "side seen: {}", side.len());
+    // The cap (y = -7, 92 away, seen from 7 above it) is a sliver one pixel tall: the
+    // centres of pixels 100 to 110 of row 83 fall on it, and no others.
+    assert_eq!(cap.len(), 11, "cap pixels");
     assert!(
         cap.iter().all(|&i| (b.normal[i].y - 1.0).abs() < 1e-4),
         "cap normals vertical"
@@ -71,6 +74,7 @@ fn views_of_the_seed_scene_show_what_they_claim() {
         .filter(|&(x, y)| b.object[at(x, y)] == earth)
         .collect();
     assert!(earth_px.len() > 50);
+    let (mut u_steps, mut v_steps) = (0, 0);
     for &(x, y) in &earth_px {
         if x + 1 < SIZE && b.object[at(x + 1, y)] == earth {
             let du = b.uv[at(x + 1, y)].x - b.uv[at(x, y)].x;
@@ -78,12 +82,17 @@ fn views_of_the_seed_scene_show_what_they_claim() {
                 du > 0.0 && du < 0.2,
                 "u step {du} at {x},{y} (a seam jumps by about -1)"
             );
+            u_steps += 1;
         }
         if y + 1 < SIZE && b.object[at(x, y + 1)] == earth {
             let dv = b.uv[at(x, y + 1)].y - b.uv[at(x, y)].y;
             assert!(dv > 0.0 && dv < 0.2, "v step {dv} at {x},{y}");
+            v_steps += 1;
         }
     }
+    // The Earth's disk is 521 pixels in 26 rows and 26 columns, nothing in front of it:
+    // 521 - 26 neighbours to the right and as many below.
+    assert_eq!((u_steps, v_steps), (495, 495), "steps checked");
     // The diamond shows the deepest trees; the floor none.
     let diamond = object_index(&scene, "diamond sphere");
     let deepest = (0..b.object.len())
@@ -124,6 +133,7 @@ fn the_command_writes_pngs_or_exr_layers() {
         "{}",
         String::from_utf8_lossy(&o.stderr)
     );
+    let mut written = 0;
     for a in Aov::ALL {
         let p = dir.join(format!("s.{}.png", a.name()));
         if a == Aov::Variance {
@@ -133,7 +143,10 @@ fn the_command_writes_pngs_or_exr_layers() {
         }
         let img = image::open(&p).unwrap_or_else(|e| panic!("{}: {e}", p.display()));
         assert_eq!((img.width(), img.height()), (40, 30));
+        written += 1;
     }
+    // Normal, uv, depth, albedo, object, material and bounces.
+    assert_eq!(written, 7, "views written");
     let o = run(&[
         &["render", scene, "-o", "v.png", "--aov", "variance"][..],
         &common,
@@ -225,6 +238,9 @@ fn the_debugging_guides_broken_scenes_show_their_bugs() {
         .filter(|&i| b.object[i] == floor)
         .map(|i| b.uv[i].y)
         .collect();
+    // The seed scene's geometry and camera: its floor fills over 1000 pixels (as
+    // `views_of_the_seed_scene_show_what_they_claim` checks).
+    assert!(vs.len() > 1000, "floor pixels: {}", vs.len());
     assert!(
         vs.iter().all(|v| (v - vs[0]).abs() < 1e-3),
         "v is constant on the floor"

@@ -15,8 +15,9 @@ fn every_bad_scene_gets_its_message_a_location_and_exit_2() {
         .filter(|p| p.extension().is_some_and(|e| e == "toml" || e == "json"))
         .collect();
     files.sort();
+    // 142 TOML files and 5 JSON ones today: more may come, none may go.
     assert!(
-        files.len() >= 50,
+        files.len() >= 147,
         "the corpus shrank: {} files",
         files.len()
     );

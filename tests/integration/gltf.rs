@@ -146,6 +146,8 @@ fn the_objects_transform_and_material_apply_to_every_part() {
         "{}",
         b.min
     );
+    // CubeA and CubeB.
+    assert_eq!(scene.objects.len(), 2);
     for o in &scene.objects {
         assert!(o.slot_materials.is_empty());
         assert_eq!(scene.material_names[o.material], "grey");

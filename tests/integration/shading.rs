@@ -300,6 +300,7 @@ fn no_mutation_of_a_scene_makes_the_loader_panic() {
         "é",
         "\u{0}",
     ];
+    let mut loaded = 0;
     for _ in 0..3000 {
         let mut text = seed.clone().into_bytes();
         for _ in 0..(next() % 4 + 1) {
@@ -333,7 +334,12 @@ fn no_mutation_of_a_scene_makes_the_loader_panic() {
             let _ = load_str(&text, Path::new("m.toml"), &base, Format::Toml).map(|s| s.summary());
         });
         assert!(result.is_ok(), "the loader panicked on:\n{text}");
+        loaded += 1;
     }
+    // The seed is ASCII and every edit but the inserted "é" writes ASCII: a mutant is
+    // invalid UTF-8 only where an edit cuts that "é" in two, which this run of the
+    // generator never does (worked out by replaying it), so every mutant is loaded.
+    assert_eq!(loaded, 3000, "mutants skipped as invalid UTF-8");
 }
 
 #[test]
