@@ -183,20 +183,18 @@ impl ImageData {
     ) -> Self {
         let texels = match &like.texels {
             Texels::Bytes { linear, .. } => {
-                // The table rises, so the nearest entry is one side of where x would go.
-                let byte = |x: f32| {
-                    let i = linear.partition_point(|&v| v < x).min(255);
-                    if i > 0 && (x - linear[i - 1]) <= (linear[i] - x) {
-                        (i - 1) as u8
-                    } else {
-                        i as u8
-                    }
-                };
+                use rayon::prelude::*;
+                let nearest = NearestByte::new(linear);
+                let mut rgb = vec![0u8; texels.len() * 3];
+                rgb.par_chunks_mut(3 * 1024)
+                    .zip(texels.par_chunks(1024))
+                    .for_each(|(out, colors)| {
+                        for (o, c) in out.chunks_exact_mut(3).zip(colors) {
+                            o.copy_from_slice(&[nearest.of(c.x), nearest.of(c.y), nearest.of(c.z)]);
+                        }
+                    });
                 Texels::Bytes {
-                    rgb: texels
-                        .iter()
-                        .flat_map(|c| [byte(c.x), byte(c.y), byte(c.z)])
-                        .collect(),
+                    rgb,
                     linear: linear.clone(),
                 }
             }
@@ -342,6 +340,46 @@ fn bilinear(
     top.lerp(bottom, fy)
 }
 
+/// The byte whose entry in a rising table of 256 linear values is nearest a value (the lower
+/// on a tie), found from a guess instead of a binary search: where the value would go in
+/// the table is first looked up among 1024 even steps of `[0, 1]`, then walked to.
+struct NearestByte<'a> {
+    linear: &'a [f32; 256],
+    /// For each step `k`, where `k / 1024` would go in the table.
+    start: [u16; 1025],
+}
+
+impl<'a> NearestByte<'a> {
+    fn new(linear: &'a [f32; 256]) -> Self {
+        let mut start = [0u16; 1025];
+        for (k, s) in start.iter_mut().enumerate() {
+            *s = linear.partition_point(|&v| v < k as f32 / 1024.0) as u16;
+        }
+        NearestByte { linear, start }
+    }
+
+    /// The nearest entry's byte: `linear.partition_point(|&v| v < x)` (clamped to 255) and
+    /// the entry before it, whichever is nearer.
+    #[inline]
+    fn of(&self, x: f32) -> u8 {
+        let t = self.linear;
+        let k = (x * 1024.0).clamp(0.0, 1024.0) as usize;
+        let mut i = self.start[k] as usize;
+        while i > 0 && t[i - 1] >= x {
+            i -= 1;
+        }
+        while i < 256 && t[i] < x {
+            i += 1;
+        }
+        let i = i.min(255);
+        if i > 0 && (x - t[i - 1]) <= (t[i] - x) {
+            (i - 1) as u8
+        } else {
+            i as u8
+        }
+    }
+}
+
 thread_local! {
     static IN_DECODER: Cell<bool> = const { Cell::new(false) };
 }
@@ -412,6 +450,40 @@ mod tests {
         img.put_pixel(0, 0, ::image::Rgb([0, 0, 0]));
         img.put_pixel(1, 0, ::image::Rgb([255, 128, 255]));
         ImageData::from_dynamic(&::image::DynamicImage::ImageRgb8(img), space)
+    }
+
+    /// The guessed nearest byte is the binary search's, for sRGB and linear tables, at
+    /// every entry, between entries, on ties, beyond both ends and at NaN.
+    #[test]
+    fn the_nearest_byte_is_the_binary_searchs() {
+        let srgb: [f32; 256] = std::array::from_fn(|i| srgb_to_linear(i as f32 / 255.0));
+        let linear: [f32; 256] = std::array::from_fn(|i| i as f32 / 255.0);
+        let mut checked = 0;
+        for table in [&srgb, &linear] {
+            let slow = |x: f32| {
+                let i = table.partition_point(|&v| v < x).min(255);
+                if i > 0 && (x - table[i - 1]) <= (table[i] - x) {
+                    (i - 1) as u8
+                } else {
+                    i as u8
+                }
+            };
+            let fast = NearestByte::new(table);
+            let mut values = vec![-1.0f32, 0.0, 1.0, 2.0, f32::NAN, f32::INFINITY];
+            for i in 0..256 {
+                values.push(table[i]);
+                if i < 255 {
+                    values.push((table[i] + table[i + 1]) / 2.0);
+                    values.push(table[i] + (table[i + 1] - table[i]) * 0.3);
+                }
+            }
+            values.extend((0..=100_000).map(|k| k as f32 / 100_000.0));
+            for x in values {
+                assert_eq!(fast.of(x), slow(x), "x = {x}");
+                checked += 1;
+            }
+        }
+        assert_eq!(checked, 2 * (6 + 256 + 2 * 255 + 100_001));
     }
 
     #[test]
