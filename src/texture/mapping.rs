@@ -173,9 +173,10 @@ impl Mapping {
     }
 
     /// Texture coordinates of `p` with how they change to the neighbouring pixels right and
-    /// below (zero for a point footprint). The shape's uv carries its own; the others are
-    /// the mapping's differences over the footprint, forward and backward, the smaller of
-    /// each ([`seamless`]).
+    /// below (zero for a point footprint). The shape's uv carries its own; planar and
+    /// spherical mappings differentiate in closed form; the cylindrical one takes its
+    /// differences over the footprint, forward and backward, the smaller of each
+    /// ([`seamless`]).
     #[inline]
     pub fn uv_footprint(&self, p: &TexturePoint) -> (Vec2, Vec2, Vec2) {
         let uv = self.uv(p);
@@ -195,6 +196,23 @@ impl Mapping {
             Mapping::Planar { u_axis, v_axis, .. } => {
                 let d = |dp: Vec3A| Vec2::new(dp.dot(*u_axis), dp.dot(*v_axis));
                 (uv, d(f.dpdx), d(f.dpdy))
+            }
+            Mapping::Spherical { center, rotation } => {
+                // The mapping's derivative, in closed form: u = 1/2 + atan2(x, z) / 2 pi and
+                // v = 1/2 - asin(y / |d|) / pi for d from the centre. No seam to step over,
+                // and no arc tangents at neighbouring points.
+                let turn = |v: Vec3A| rotation.as_ref().map_or(v, |r| r.vector_to_object(v));
+                let d = turn(p.point - center.unwrap_or(p.center));
+                let xz2 = d.x * d.x + d.z * d.z;
+                let (len2, xz) = (d.length_squared(), xz2.sqrt());
+                let du = |e: Vec3A| (d.z * e.x - d.x * e.z) / (std::f32::consts::TAU * xz2);
+                let dv =
+                    |e: Vec3A| -(e.y * len2 - d.y * d.dot(e)) / (std::f32::consts::PI * len2 * xz);
+                let step = |dp: Vec3A| {
+                    let e = turn(dp);
+                    Vec2::new(du(e), dv(e))
+                };
+                (uv, step(f.dpdx), step(f.dpdy))
             }
             _ => {
                 let at = |dp: Vec3A| {
@@ -314,6 +332,55 @@ mod tests {
             )
         );
         assert!(m.reads_shape_uv() && !m.keeps_uv_axes());
+    }
+
+    /// The spherical mapping's closed-form derivative is its uv's change over a small step,
+    /// at points all over a sphere away from the seam and the poles, turned or not.
+    #[test]
+    fn the_spherical_derivative_is_the_uvs_change() {
+        let mut checked = 0;
+        for rotation in [
+            None,
+            Some(Transform::rotation(Vec3::new(20.0, 75.0, -10.0))),
+        ] {
+            let m = Mapping::Spherical {
+                center: Some(Vec3A::new(1.0, 2.0, 3.0)),
+                rotation,
+            };
+            for (k, step) in [Vec3A::new(1e-3, 0.0, 0.0), Vec3A::new(2e-4, -7e-4, 5e-4)]
+                .into_iter()
+                .enumerate()
+            {
+                for i in 0..40 {
+                    let a = i as f32 * 0.61 + k as f32;
+                    let dir = Vec3A::new(a.sin() * 0.8, (a * 0.37).cos() * 0.6, a.cos() * 0.8);
+                    let point = Vec3A::new(1.0, 2.0, 3.0) + dir.normalize() * 2.0;
+                    let f = Footprint {
+                        dpdx: step,
+                        dpdy: step * -0.5,
+                        ..Default::default()
+                    };
+                    let p = TexturePoint {
+                        footprint: Some(&f),
+                        ..TexturePoint::at(point)
+                    };
+                    let (uv, dx, dy) = m.uv_footprint(&p);
+                    let ahead = m.uv(&TexturePoint::at(point + step));
+                    let behind = m.uv(&TexturePoint::at(point - step));
+                    if (ahead.x - behind.x).abs() > 0.5 || uv.y < 0.05 || uv.y > 0.95 {
+                        continue; // the seam, or too near a pole for differences
+                    }
+                    let central = (ahead - behind) / 2.0;
+                    assert!(
+                        (dx - central).abs().max_element() < 2e-5,
+                        "{point}: {dx} vs {central}"
+                    );
+                    assert!((dy + central * 0.5).abs().max_element() < 2e-5, "{dy}");
+                    checked += 1;
+                }
+            }
+        }
+        assert!(checked >= 140, "{checked} points checked of 160");
     }
 
     #[test]
