@@ -220,7 +220,7 @@ impl Shape {
 
     /// How the shape's uv changes from the hit `hit` at `p` to the point `dp` away on its
     /// tangent plane (the patch a pixel sees; zero unless `want_uv`), and the unit normal
-    /// there (the shading normal, for meshes). Analytic shapes difference their uv forward
+    /// there (the shading normal, for meshes; a sphere's to first order). Analytic shapes difference their uv forward
     /// and backward and keep the smaller of each ([`seamless`]), so that a step across a
     /// seam (a sphere's `u` going from 1 to 0) does not count as a jump.
     pub fn differential(
@@ -230,8 +230,15 @@ impl Shape {
         dp: Vec3A,
         want_uv: bool,
     ) -> (Vec2, Vec3A) {
-        if let Shape::Mesh(m) = self {
-            return m.differential(p, hit, dp);
+        match self {
+            Shape::Mesh(m) => return m.differential(p, hit, dp),
+            // A sphere's unit normal changes by the step over the radius (to first order,
+            // for a step in the tangent plane): no square root for a mirror ball's
+            // reflected differentials.
+            Shape::Sphere(s) if !want_uv => {
+                return (Vec2::ZERO, (p + dp - s.center) / s.radius);
+            }
+            _ => {}
         }
         let ahead = self.surface(p + dp, hit, want_uv);
         if !want_uv {
