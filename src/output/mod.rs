@@ -3,6 +3,7 @@
 //! so a failed render never leaves a broken image or destroys an old one.
 
 pub mod atomic;
+pub mod inputs;
 pub mod merge;
 pub mod tone;
 

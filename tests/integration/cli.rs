@@ -6,7 +6,7 @@ use super::{repo, scratch};
 use std::path::Path;
 use std::process::{Command, Output};
 
-fn snell(args: &[&str], cwd: &Path) -> Output {
+pub(crate) fn snell(args: &[&str], cwd: &Path) -> Output {
     Command::new(env!("CARGO_BIN_EXE_snell"))
         .args(args)
         .current_dir(cwd)
@@ -14,16 +14,16 @@ fn snell(args: &[&str], cwd: &Path) -> Output {
         .expect("the snell binary runs")
 }
 
-fn stderr(o: &Output) -> String {
+pub(crate) fn stderr(o: &Output) -> String {
     String::from_utf8_lossy(&o.stderr).into_owned()
 }
 
-fn stdout(o: &Output) -> String {
+pub(crate) fn stdout(o: &Output) -> String {
     String::from_utf8_lossy(&o.stdout).into_owned()
 }
 
 /// Runs snell and checks the exit code and that nothing panicked.
-fn expect(args: &[&str], cwd: &Path, code: i32) -> Output {
+pub(crate) fn expect(args: &[&str], cwd: &Path, code: i32) -> Output {
     let o = snell(args, cwd);
     assert_eq!(
         o.status.code(),

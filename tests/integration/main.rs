@@ -14,6 +14,7 @@ mod explain;
 mod filtering;
 mod gltf;
 mod groups;
+mod inputs_kept;
 mod khronos;
 mod meshes;
 mod optics;

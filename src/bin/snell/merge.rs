@@ -20,6 +20,17 @@ pub(crate) struct MergeArgs {
 
 pub(crate) fn merge_command(args: MergeArgs) -> ExitCode {
     // The output first, as a render does: a bad destination fails before the reading.
+    if let Some((out, part)) = snell::output::inputs::output_over_input(
+        [args.output.as_path()],
+        args.parts.iter().map(PathBuf::as_path),
+    ) {
+        eprintln!(
+            "error: the output {} is the region file {}: writing it would destroy it",
+            out.display(),
+            part.display()
+        );
+        return ExitCode::from(2);
+    }
     let pending = match PendingOutput::create(&args.output) {
         Ok(p) => p,
         Err(e) => {

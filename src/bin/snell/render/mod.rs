@@ -84,6 +84,52 @@ pub(crate) fn render(args: RenderArgs) -> ExitCode {
     render_job(&args, job, &out_path, resumed)
 }
 
+/// Refuses (exit 2, before any work) a render whose picture, its partial picture, a view
+/// (`--aov`) or its checkpoint would replace a file the render reads: the scene file, its
+/// textures, meshes, glTF buffers and images, environment map, or the checkpoint it
+/// resumes.
+fn refuse_outputs_over_inputs(
+    args: &RenderArgs,
+    scene: &snell::Scene,
+    scene_path: &Path,
+    out_path: &Path,
+) -> Option<ExitCode> {
+    let mut outputs = vec![
+        out_path.to_path_buf(),
+        snell::output::partial_path(out_path),
+    ];
+    for list in &args.aov {
+        for &a in list {
+            let p = aov_path(out_path, a);
+            outputs.push(snell::output::partial_path(&p));
+            outputs.push(p);
+        }
+    }
+    let mut inputs: Vec<&Path> = vec![scene_path];
+    inputs.extend(scene.files.iter().map(PathBuf::as_path));
+    if let Some(r) = &args.resume {
+        inputs.push(r);
+    }
+    // A checkpoint may replace the one it resumes (that is how --resume goes on).
+    if let Some(c) = &args.checkpoint
+        && args.resume.as_ref() != Some(c)
+    {
+        outputs.push(c.clone());
+    }
+    let (out, input) = snell::output::inputs::output_over_input(
+        outputs.iter().map(PathBuf::as_path),
+        inputs.iter().copied(),
+    )?;
+    Some(usage_error(
+        &format!(
+            "the output {} is {}, which this render reads: writing it would destroy it",
+            out.display(),
+            input.display()
+        ),
+        Some("name another output (-o FILE)"),
+    ))
+}
+
 /// The command line's overrides of the scene's settings.
 fn overrides(args: &RenderArgs) -> snell::job::Overrides {
     snell::job::Overrides {
@@ -109,6 +155,9 @@ fn render_job(
             "--checkpoint-every must be a positive number of seconds",
             None,
         );
+    }
+    if let Some(code) = refuse_outputs_over_inputs(args, &scene, &scene_path, &out_path) {
+        return code;
     }
     let mut pending = match PendingOutput::create(&out_path) {
         Ok(p) => p,
