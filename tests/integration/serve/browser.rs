@@ -237,6 +237,33 @@ fn browser_shows_follows_and_explains() {
         "the finished picture again",
         "return document.getElementById('progress').textContent.includes('done') || null",
     );
+    // The page's exposure and curve start from the scene's, and follow the file's when
+    // they change there.
+    let controls = "return [document.getElementById('exposure').value, document.getElementById('tone').value, document.getElementById('frame').src]";
+    let now = driver.run(controls);
+    assert_eq!(
+        (now[0].as_str(), now[1].as_str()),
+        (Some("0"), Some("clamp")),
+        "{now}"
+    );
+    let toned = text.replace(
+        "background = [0, 0, 0]\n",
+        "background = [0, 0, 0]\nexposure = -1.5\ntonemap = \"aces\"\n",
+    );
+    assert_ne!(toned, text);
+    std::fs::write(&scene, &toned).unwrap();
+    let now = driver.wait(
+        60,
+        "the scene's exposure and curve in the controls",
+        &format!("{}; return (c[0] === '-1.5' && c[1] === 'aces' && c[2].includes('exposure=-1.5&tone=aces')) ? c : null", controls.replace("return ", "const c = ")),
+    );
+    assert_eq!(now[1].as_str(), Some("aces"));
+    std::fs::write(&scene, &text).unwrap();
+    driver.wait(
+        60,
+        "the controls back with the file",
+        "return (document.getElementById('tone').value === 'clamp' && document.getElementById('progress').textContent.includes('done')) || null",
+    );
     // A click on the diamond sphere (pixel 256, 380 of 512 x 512) explains it.
     let img = driver.session_call(
         "POST",

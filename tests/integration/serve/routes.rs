@@ -327,3 +327,76 @@ fn a_broken_scene_is_shown_and_a_missing_one_refused() {
     assert_eq!(o.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&o.stderr).contains("cannot read nowhere.toml"));
 }
+
+/// The page shows the picture as `snell render` writes it: the scene's `[image] exposure`
+/// and `tonemap` (environment.toml: ACES at -1 stop) are in the status for the page's
+/// controls and are what `/frame.jpg` applies when not told otherwise, so the frame's mean
+/// equals the rendered PNG's at the same samples (within JPEG's error), where exposure 0
+/// and `clamp` (what the page used to show) are far off.
+#[test]
+fn the_frame_is_toned_as_the_render_writes_it() {
+    let dir = super::super::scratch("serve-tone");
+    std::fs::create_dir_all(dir.join("scenes")).unwrap();
+    std::fs::create_dir_all(dir.join("assets/env")).unwrap();
+    for f in ["scenes/environment.toml", "assets/env/studio.hdr"] {
+        std::fs::copy(super::super::repo(f), dir.join(f)).unwrap();
+    }
+    let s = start(
+        &dir,
+        "scenes/environment.toml",
+        &["--size", "64", "--spp", "8"],
+    );
+    let st = wait_for(s.port, 60, "a finished picture", |s| {
+        current_frame(s) && s["frame"]["done"] == true
+    });
+    assert_eq!(
+        st["tone"],
+        serde_json::json!({"exposure": -1.0, "curve": "aces"})
+    );
+    let (w, h) = (
+        st["size"][0].as_u64().unwrap(),
+        st["size"][1].as_u64().unwrap(),
+    );
+    let spp = st["frame"]["spp"].as_u64().unwrap();
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_snell"))
+        .args([
+            "render",
+            "scenes/environment.toml",
+            "-o",
+            "r.png",
+            "--quiet",
+        ])
+        .args(["--width", &w.to_string(), "--height", &h.to_string()])
+        .args(["--spp", &spp.to_string()])
+        .current_dir(&dir)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let mean = |img: image::RgbImage| {
+        img.pixels().flat_map(|p| p.0).map(f64::from).sum::<f64>() / (img.len() as f64)
+    };
+    let png = mean(image::open(dir.join("r.png")).unwrap().to_rgb8());
+    let jpeg = |path: &str| {
+        mean(
+            image::load_from_memory(&get(s.port, path).body)
+                .unwrap()
+                .to_rgb8(),
+        )
+    };
+    let shown = jpeg("/frame.jpg");
+    assert!(
+        (shown - png).abs() < 1.0,
+        "the page's picture {shown}, the PNG {png}"
+    );
+    let asked = jpeg("/frame.jpg?exposure=-1&tone=aces");
+    assert!((asked - shown).abs() < 0.01, "{asked} {shown}");
+    let old = jpeg("/frame.jpg?exposure=0&tone=clamp");
+    assert!(
+        (old - png).abs() > 5.0,
+        "exposure 0 and clamp: {old}, the PNG {png}"
+    );
+}

@@ -239,6 +239,10 @@ pub(crate) fn status(ctx: &Context) -> serde_json::Value {
         "integrator": s.integrator,
         "target_spp": s.target_spp,
         "size": s.scene.as_ref().map(|sc| [sc.settings.width, sc.settings.height]),
+        "tone": s.scene.as_ref().map(|sc| serde_json::json!({
+            "exposure": sc.settings.tone.exposure,
+            "curve": sc.settings.tone.curve.name(),
+        })),
         "frame": frame,
         "error": s.error,
         "camera": camera,
@@ -289,11 +293,12 @@ async fn events(State(ctx): Ctx) -> Response {
         .into_response()
 }
 
-/// The newest frame as a JPEG, after `exposure` (stops) and `tone` (a curve's name).
+/// The newest frame as a JPEG, after `exposure` (stops) and `tone` (a curve's name), each
+/// the scene's where not given.
 async fn frame(State(ctx): Ctx, RawQuery(q): RawQuery) -> Response {
     let q = Query(q.unwrap_or_default());
     let exposure = match q.number::<f32>("exposure") {
-        Ok(e) if e.is_none_or(|e| e.is_finite() && e.abs() <= 20.0) => e.unwrap_or(0.0),
+        Ok(e) if e.is_none_or(|e| e.is_finite() && e.abs() <= 20.0) => e,
         _ => {
             return error(
                 StatusCode::BAD_REQUEST,
@@ -302,13 +307,15 @@ async fn frame(State(ctx): Ctx, RawQuery(q): RawQuery) -> Response {
         }
     };
     let curve = match q.get("tone").map(ToneCurve::from_name) {
-        None => ToneCurve::Clamp,
-        Some(Some(c)) => c,
+        None => None,
+        Some(Some(c)) => Some(c),
         Some(None) => return error(StatusCode::BAD_REQUEST, "tone is clamp, reinhard or aces"),
     };
     let Some(frame) = ctx.shared.lock().frame.clone() else {
         return error(StatusCode::NOT_FOUND, "no picture yet");
     };
+    let exposure = exposure.unwrap_or(frame.tone.exposure);
+    let curve = curve.unwrap_or(frame.tone.curve);
     blocking(move || {
         let key = (frame.id, exposure.to_bits(), curve);
         let mut cache = ctx.frame_cache.lock().unwrap_or_else(|e| e.into_inner());

@@ -56,6 +56,10 @@ pub(crate) struct Frame {
     pub rays_per_second: f64,
     /// Whether the render has all the samples it will take.
     pub done: bool,
+    /// The scene's exposure and tone curve (its `[image]` table, or serve's flags): what
+    /// `snell render` writes the PNG with, and what the picture is shown with unless the
+    /// page asks otherwise.
+    pub tone: snell::output::tone::Tone,
 }
 
 /// Everything the handlers read and the loop and the watcher change.
@@ -457,6 +461,11 @@ fn publish(
     }
     let elapsed = start.elapsed().as_secs_f64();
     s.frames += 1;
+    let tone = s
+        .scene
+        .as_ref()
+        .map(|sc| sc.settings.tone)
+        .unwrap_or_default();
     s.frame = Some(Arc::new(Frame {
         id: s.frames,
         generation,
@@ -466,6 +475,7 @@ fn publish(
         elapsed,
         rays_per_second: rays as f64 / elapsed.max(1e-9),
         done,
+        tone,
     }));
     s.version += 1;
     shared.announce(s);

@@ -51,8 +51,27 @@ function showPicture() {
 
 function fmt(n, digits) { return Number(n).toFixed(digits); }
 
+// The exposure and curve the scene renders its PNG with, as last applied to the controls:
+// the page starts from them and follows the file when they change there; between changes
+// the controls are the user's.
+let sceneTone = '';
+function followSceneTone() {
+  if (!status.tone) return;
+  const key = `${status.tone.exposure} ${status.tone.curve}`;
+  if (key === sceneTone) return;
+  sceneTone = key;
+  const e = $('exposure');
+  const v = Number(status.tone.exposure);
+  e.min = String(Math.min(-5, Math.floor(v)));
+  e.max = String(Math.max(5, Math.ceil(v)));
+  e.value = String(v);
+  $('exposure-value').textContent = fmt(v, 1);
+  $('tone').value = status.tone.curve;
+}
+
 function showStatus() {
   $('scene').textContent = status.scene;
+  followSceneTone();
   const f = status.frame;
   if (f) {
     const rays = f.rays_per_second >= 1e6 ? `${fmt(f.rays_per_second / 1e6, 1)} M rays/s` : `${fmt(f.rays_per_second / 1e3, 0)} k rays/s`;
