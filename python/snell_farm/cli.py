@@ -77,6 +77,8 @@ def parser() -> argparse.ArgumentParser:
                        help="join this Ray cluster [default: start a local Ray instance on this machine]")
     where.add_argument("--workers", metavar="N", type=_typed(_positive, "workers"),
                        help="CPUs of the local Ray instance [default: all]")
+    render.add_argument("--connect-timeout", metavar="SECONDS", type=_typed(_positive, "connect timeout"),
+                        default=30, help="give up on a cluster that has not answered in this long [default: 30]")
     render.add_argument("--snell", metavar="PATH",
                         help="the snell binary, at the same path on every worker [default: snell on PATH]")
     render.add_argument("--width", metavar="W", type=_typed(_positive, "width"), help="image width (overrides the scene)")
@@ -112,7 +114,7 @@ def main(argv: Optional[List[str]] = None) -> int:
         args.render_parser.error(f"-o {args.output}: the output must end in .png or .exr")
     spec = JobSpec(
         scene=args.scene, output=args.output, frames=args.frames, grid=args.tiles, tile_size=args.tile_size,
-        address=args.address, workers=args.workers, snell=args.snell, width=args.width, height=args.height,
+        address=args.address, workers=args.workers, connect_timeout=args.connect_timeout, snell=args.snell, width=args.width, height=args.height,
         spp=args.spp, cpus_per_task=args.cpus_per_task, retries=args.retries, quiet=args.quiet,
     )
     _terminate_as_interrupt()

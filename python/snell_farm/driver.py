@@ -34,6 +34,8 @@ class JobSpec:
     tile_size: Optional[int] = None
     address: Optional[str] = None
     workers: Optional[int] = None
+    connect_timeout: float = 30.0
+    """Seconds to wait for Ray to start or answer."""
     snell: Optional[str] = None
     width: Optional[int] = None
     height: Optional[int] = None
@@ -137,7 +139,7 @@ def run(spec: JobSpec, stream: Optional[TextIO] = None) -> Costs:
             overrides += [flag, str(value)]
     kill_marker = os.environ.get(KILL_HOOK) or None
 
-    with connected(spec.address, spec.workers):
+    with connected(spec.address, spec.workers, spec.connect_timeout):
         import ray
 
         costs.workers = task_slots(spec.cpus_per_task)
