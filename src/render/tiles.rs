@@ -9,8 +9,10 @@ use std::sync::atomic::{AtomicU64, Ordering};
 
 /// Calls `work(x, y, pixel, stats)` for every pixel of `film` outside the tiles `skip`
 /// names (and of the tiles that share a pixel with `options.region`, if given; progress
-/// then counts those tiles' pixels only), each tile on one thread, then `finished(i, tile)` with the tile's pixels. Tiles
-/// not yet started when `options.cancel` is set are left as they were. Returns each tile
+/// then counts those tiles' pixels only), each tile on one thread, then `finished(i, tile)`
+/// with the tile's pixels. Once `options.cancel` is set, tiles not yet started are left as
+/// they were, and a tile under way stops at its next row: each of its pixels is whole or
+/// untouched, and the tile is not reported. Returns each tile
 /// rendered with what its `stats` gathered, in tile order (so that whatever the stats keep
 /// is the same at any thread count).
 pub(crate) fn for_each_tile<P, S>(
@@ -63,6 +65,12 @@ where
                 let (x0, y0, x1, _) = grid.rect(i);
                 let mut stats = S::default();
                 for (row, y) in tile.chunks_exact_mut((x1 - x0) as usize).zip(y0..) {
+                    // A tile of many samples a pixel takes seconds: cancellation also stops
+                    // one between rows, leaving it unfinished (not reported, not counted):
+                    // each pixel is whole or untouched.
+                    if options.cancel.is_some_and(|c| c.load(Ordering::Relaxed)) {
+                        return None;
+                    }
                     for (pixel, x) in row.iter_mut().zip(x0..) {
                         work(x, y, pixel, &mut stats);
                     }

@@ -325,6 +325,9 @@ translate = [2, 0, 0]
     ]);
     assert!(out.status.success());
     assert!(String::from_utf8_lossy(&out.stderr).contains("frame 1:"));
+    // One frame rendered is one frame, not "1 frames".
+    let said = String::from_utf8_lossy(&out.stdout);
+    assert!(said.contains("rendered 1 frame (3 skipped"), "{said}");
     assert_eq!(std::fs::read(dir.join("out/f_01.png")).unwrap(), b"kept");
     assert_eq!(std::fs::read(dir.join("out/f_02.png")).unwrap(), frames[2]);
 }

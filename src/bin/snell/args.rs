@@ -322,10 +322,35 @@ fn size(s: &str) -> Result<u32, String> {
 }
 
 /// A whole number from 0, for `--seed` and `--sample`.
-fn whole<T: std::str::FromStr>(s: &str) -> Result<T, String> {
-    s.trim()
-        .parse()
-        .map_err(|_| format!("`{s}` is not a whole number from 0 (0, 1, 2 ...)"))
+fn whole<T: std::str::FromStr + num::Bounded>(s: &str) -> Result<T, String> {
+    let s = s.trim();
+    s.parse().map_err(|_| {
+        // A whole number past the type's range is told the range, not that it is not one.
+        if s.parse::<i128>().is_ok() {
+            format!(
+                "`{s}` is out of range: give a whole number from 0 to {}",
+                T::MAX_TEXT
+            )
+        } else {
+            format!("`{s}` is not a whole number from 0 (0, 1, 2 ...)")
+        }
+    })
+}
+
+/// The largest value of the whole number types flags take, for messages.
+mod num {
+    pub trait Bounded {
+        const MAX_TEXT: &'static str;
+    }
+    impl Bounded for u16 {
+        const MAX_TEXT: &'static str = "65535";
+    }
+    impl Bounded for u32 {
+        const MAX_TEXT: &'static str = "4294967295";
+    }
+    impl Bounded for u64 {
+        const MAX_TEXT: &'static str = "18446744073709551615";
+    }
 }
 
 /// A whole number from 1, for sizes, counts and limits. Negative numbers reach this parser

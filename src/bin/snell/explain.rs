@@ -249,10 +249,10 @@ fn explain_path(args: &ExplainArgs, scene: &snell::Scene, k: u32) -> ExitCode {
         None => String::new(),
     };
     outln!(
-        "{} rays traced ({} camera, {} bounces, {} shadow); the sample's value, the sum of what the vertices add, is ({}, {}, {}) in linear RGB{clamp_note}",
-        rays.camera + rays.secondary + rays.shadow,
+        "{} traced ({} camera, {}, {} shadow); the sample's value, the sum of what the vertices add, is ({}, {}, {}) in linear RGB{clamp_note}",
+        crate::count(rays.camera + rays.secondary + rays.shadow, "ray"),
         rays.camera,
-        rays.secondary,
+        crate::count(rays.secondary, "bounce"),
         rays.shadow,
         color.x,
         color.y,

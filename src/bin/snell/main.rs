@@ -24,6 +24,15 @@ macro_rules! outln {
     }};
 }
 
+/// `n` and the noun, `s` added but for one: "1 frame", "3 frames".
+pub(crate) fn count(n: u64, noun: &str) -> String {
+    if n == 1 {
+        format!("1 {noun}")
+    } else {
+        format!("{n} {noun}s")
+    }
+}
+
 mod args;
 mod explain;
 mod merge;

@@ -136,7 +136,8 @@ pub(crate) fn render_frames(args: &RenderArgs, range: FrameRange) -> ExitCode {
     }
     if !args.quiet && range.count() > 1 {
         outln!(
-            "rendered {rendered} frames{} in {:.2} s",
+            "rendered {}{} in {:.2} s",
+            crate::count(rendered as u64, "frame"),
             if skipped > 0 {
                 format!(" ({skipped} skipped: their files exist)")
             } else {

@@ -347,9 +347,15 @@ fn render_job(
     for &a in &aovs {
         let _ = std::fs::remove_file(snell::output::partial_path(&aov_path(&out_path, a)));
     }
-    if let Some(path) = &checkpoint_path {
+    if let Some(path) = &checkpoint_path
+        && std::fs::remove_file(path).is_ok()
+        && !args.quiet
+    {
         // The render is whole: its checkpoint has nothing left to continue.
-        let _ = std::fs::remove_file(path);
+        eprintln!(
+            "removed the checkpoint {}: the render is whole",
+            path.display()
+        );
     }
     if !args.quiet {
         let (w, h, pixels) = match args.region {
