@@ -26,6 +26,11 @@ pub(super) struct LoadedMesh {
     pub part: Option<String>,
     /// The file as the scene first names it.
     pub file: String,
+    /// What the mesh is within its file, for `snell check`: a glTF mesh's name and the
+    /// nodes that place it (`None` for OBJ and PLY).
+    pub label: Option<String>,
+    /// The images its file's materials read (a glTF file's; 0 for OBJ and PLY).
+    pub file_images: usize,
     /// Scene material of each of the file's materials (empty when it has none).
     pub slot_materials: Vec<usize>,
     /// The MTL files the mesh file names that could not be read, each with why.
@@ -195,6 +200,8 @@ impl Builder<'_> {
             node: None,
             part: None,
             file: file.to_string(),
+            label: None,
+            file_images: 0,
             slot_materials,
             unread_mtl,
         })

@@ -171,6 +171,11 @@ pub struct BuildStats {
 pub struct MeshStats {
     /// The file as the scene names it.
     pub file: String,
+    /// What the mesh is within its file: a glTF mesh's name and the nodes that place it
+    /// (`None` for OBJ and PLY).
+    pub label: Option<String>,
+    /// The images its file's materials read (a glTF file's; 0 for OBJ and PLY).
+    pub file_images: usize,
     /// Triangles loaded from the file (degenerate ones dropped).
     pub triangles: usize,
     /// Objects that place it.
@@ -179,11 +184,12 @@ pub struct MeshStats {
 
 impl BuildStats {
     /// Counts objects, meshes and triangles.
-    /// `file_of` names the file a mesh was read from.
+    /// `file_of` names the file a mesh was read from (its `file`, `label` and
+    /// `file_images`).
     pub(crate) fn record_objects(
         &mut self,
         objects: &[Object],
-        file_of: impl Fn(&std::sync::Arc<crate::geometry::Mesh>) -> String,
+        file_of: impl Fn(&std::sync::Arc<crate::geometry::Mesh>) -> MeshStats,
     ) {
         let mut seen = std::collections::HashMap::new();
         self.objects = objects.len();
@@ -196,9 +202,9 @@ impl BuildStats {
                     self.bvh_bytes += m.bvh_bytes();
                     self.mesh_bytes += m.geometry_bytes();
                     self.per_mesh.push(MeshStats {
-                        file: file_of(m),
                         triangles: m.triangle_count(),
                         placements: 0,
+                        ..file_of(m)
                     });
                     self.per_mesh.len() - 1
                 });
@@ -672,8 +678,13 @@ impl Scene {
                 st.meshes, st.unique_triangles, st.instanced_triangles
             );
             for m in &st.per_mesh {
+                // A glTF file's meshes by name, with the nodes that place them.
+                let part = m
+                    .label
+                    .as_ref()
+                    .map_or_else(String::new, |l| format!(": {l}"));
                 extra += &format!(
-                    "\n  {}: {} triangles, placed {} time{} ({} triangles)",
+                    "\n  {}{part}: {} triangles, placed {} time{} ({} triangles)",
                     m.file,
                     m.triangles,
                     m.placements,
@@ -682,8 +693,27 @@ impl Scene {
                 );
             }
         }
+        // The named textures, then the images each glTF file's materials read.
+        let mut files: Vec<(&str, usize)> = vec![];
+        for m in st.per_mesh.iter().filter(|m| m.file_images > 0) {
+            if !files.iter().any(|(f, _)| *f == m.file) {
+                files.push((&m.file, m.file_images));
+            }
+        }
+        let count = self.texture_names.len() + files.iter().map(|(_, n)| n).sum::<usize>();
+        let mut names: Vec<String> = self.texture_names.keys().cloned().collect();
+        names.extend(
+            files
+                .iter()
+                .map(|(f, n)| format!("{n} image{} of {f}", if *n == 1 { "" } else { "s" })),
+        );
+        let textures = if names.is_empty() {
+            count.to_string()
+        } else {
+            format!("{count} ({})", names.join(", "))
+        };
         format!(
-            "image:     {} x {}, {} spp, max depth {}, seed {}\nobjects:   {} ({})\nlights:    {lights}\nmaterials: {}\ntextures:  {}{}{extra}",
+            "image:     {} x {}, {} spp, max depth {}, seed {}\nobjects:   {} ({})\nlights:    {lights}\nmaterials: {}\ntextures:  {textures}{extra}",
             s.width,
             s.height,
             s.spp,
@@ -692,19 +722,6 @@ impl Scene {
             self.objects.len(),
             kinds.join(", "),
             self.material_names.len(),
-            self.texture_names.len(),
-            if self.texture_names.is_empty() {
-                String::new()
-            } else {
-                format!(
-                    " ({})",
-                    self.texture_names
-                        .keys()
-                        .cloned()
-                        .collect::<Vec<_>>()
-                        .join(", ")
-                )
-            }
         )
     }
 }

@@ -2,7 +2,8 @@
 //! exporter lays files out): each node that shows a mesh becomes an object, the mesh stored
 //! once; the node hierarchy's transforms place them; materials and their base-colour images
 //! come through with glTF's texture orientation; a .glb is the same scene as the .gltf; a
-//! scene's transform applies after the file's.
+//! scene's transform applies after the file's (what a file holds and snell does not read:
+//! gltf_unread.rs).
 
 use super::repo;
 use snell::math::{Color, Ray, Vec3A};
@@ -10,7 +11,7 @@ use snell::render::render;
 use snell::scene::{Format, Scene, Skip, load_str};
 use std::sync::Arc;
 
-fn scene_with(file: &str, extra: &str) -> Scene {
+pub(super) fn scene_with(file: &str, extra: &str) -> Scene {
     let dir = repo("tests/data/gltf");
     let text = format!(
         "[image]\nwidth = 24\nheight = 16\nsamples = 1\n\
@@ -253,7 +254,7 @@ fn alpha_cuts_holes() {
 }
 
 /// A scene with `[camera]` and objects of its own text, read in tests/data/gltf.
-fn scene_text(text: &str) -> Result<Scene, String> {
+pub(super) fn scene_text(text: &str) -> Result<Scene, String> {
     let dir = repo("tests/data/gltf");
     load_str(text, &dir.join("t.toml"), &dir, Format::Toml).map_err(|e| format!("{e:?}"))
 }

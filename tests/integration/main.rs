@@ -13,6 +13,7 @@ mod environment;
 mod explain;
 mod filtering;
 mod gltf;
+mod gltf_unread;
 mod groups;
 mod inputs_kept;
 mod khronos;

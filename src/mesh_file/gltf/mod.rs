@@ -4,18 +4,24 @@
 //! materials with their base-colour images.
 //!
 //! Nothing in a file reaches the `gltf` crate's readers until its buffer views and
-//! accessors have been checked against the buffers' sizes, and indices against the vertex
-//! counts, so a malformed file is an error that names it and what is wrong, never a panic.
+//! accessors have been checked against the buffers' sizes (checks.rs), and indices against
+//! the vertex counts, so a malformed file is an error that names it and what is wrong,
+//! never a panic. What the file holds and snell does not read (skins, morph targets,
+//! animations, material extensions) comes back as warnings (unsupported.rs).
 //! glTF's axes are snell's (+y up, right-handed, metres), and its texture coordinates put
 //! v = 0 at the top of the image, as snell does.
 
+mod checks;
 mod material;
 mod placed;
+mod unsupported;
 
 pub use material::{Alpha, PbrMaterial, TextureRef, uv_transform};
 pub use placed::{GltfCamera, GltfLight, GltfLightKind};
+pub use unsupported::named;
 
 use super::{MeshData, MeshError};
+use checks::{check_before_validation, check_layouts, check_views, validated};
 use gltf::mesh::Mode;
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
@@ -65,7 +71,8 @@ pub struct GltfInstance {
 }
 
 /// Extensions a file may require that snell reads (or may ignore without changing the
-/// picture's geometry).
+/// picture's geometry); a file that uses them without requiring them gets no warning
+/// for them.
 const SUPPORTED_REQUIRED: &[&str] = &[
     "KHR_materials_ior",
     "KHR_materials_transmission",
@@ -132,7 +139,7 @@ fn parse_with(bytes: &[u8], path: &Path, geometry: bool) -> Result<GltfScene, Me
     }
     let root = document.into_json();
     check_before_validation(&root).map_err(|m| error(path, m))?;
-    let document = gltf::Document::from_json(root).map_err(invalid)?;
+    let document = validated(root).map_err(invalid)?;
     let base = path.parent().unwrap_or(Path::new("."));
     let mut out = GltfScene::default();
     for b in document.buffers() {
@@ -162,6 +169,8 @@ fn parse_with(bytes: &[u8], path: &Path, geometry: bool) -> Result<GltfScene, Me
         None => vec![],
     };
     let mut mesh_of: HashMap<usize, usize> = HashMap::new();
+    // The nodes that show a mesh, by index.
+    let mut placed_nodes = vec![];
     let mut used_materials = vec![false; document.materials().len()];
     if geometry {
         out.materials = document.materials().map(|m| material::read(&m)).collect();
@@ -188,6 +197,7 @@ fn parse_with(bytes: &[u8], path: &Path, geometry: bool) -> Result<GltfScene, Me
                     out.meshes.len() - 1
                 }
             };
+            placed_nodes.push(node.index());
             out.instances.push(GltfInstance {
                 mesh: k,
                 node: node
@@ -211,6 +221,11 @@ fn parse_with(bytes: &[u8], path: &Path, geometry: bool) -> Result<GltfScene, Me
     if !geometry {
         return Ok(out);
     }
+    out.warnings.extend(unsupported::warnings(
+        &document,
+        &placed_nodes,
+        &used_materials,
+    ));
     // The images the used materials show, decoded.
     let mut wanted = vec![false; document.images().len()];
     for (m, used) in out.materials.iter().zip(&used_materials) {
@@ -264,69 +279,6 @@ fn mul(a: &[[f32; 4]; 4], b: &[[f32; 4]; 4]) -> [[f32; 4]; 4] {
     out
 }
 
-/// What the `gltf` crate (1.4.1) takes for granted and panics on where a file breaks it,
-/// each found by the fuzz target: every primitive's attributes name accessors that exist
-/// (its validation reads a primitive's POSITION accessor before checking that); an image
-/// in a buffer view has a MIME type, and one not in a buffer view has a URI; URIs decode
-/// from their %-escapes to UTF-8.
-fn check_before_validation(root: &gltf::json::Root) -> Result<(), String> {
-    for (i, image) in root.images.iter().enumerate() {
-        if image.buffer_view.is_some() && image.mime_type.is_none() {
-            return Err(format!("image {i} is in a buffer view but has no mimeType"));
-        }
-        if image.buffer_view.is_none() && image.uri.is_none() {
-            return Err(format!("image {i} has neither a uri nor a buffer view"));
-        }
-    }
-    let uris = root
-        .images
-        .iter()
-        .filter_map(|i| i.uri.as_deref())
-        .chain(root.buffers.iter().filter_map(|b| b.uri.as_deref()));
-    for uri in uris {
-        if !uri.starts_with("data:") && decode_uri(uri).is_none() {
-            return Err(format!("the uri `{uri}` does not decode to UTF-8"));
-        }
-    }
-    // A camera's type must name a projection it has: the crate's validation only asks for
-    // one of the two, and its reader unwraps the one the type names.
-    for (i, c) in root.cameras.iter().enumerate() {
-        use gltf::json::camera::Type;
-        use gltf::json::validation::Checked;
-        let (has, name) = match c.type_ {
-            Checked::Valid(Type::Perspective) => (c.perspective.is_some(), "perspective"),
-            Checked::Valid(Type::Orthographic) => (c.orthographic.is_some(), "orthographic"),
-            Checked::Invalid => (true, ""),
-        };
-        if !has {
-            return Err(format!(
-                "camera {i} is of type {name} but has no `{name}` projection"
-            ));
-        }
-    }
-    let n = root.accessors.len();
-    for (m, mesh) in root.meshes.iter().enumerate() {
-        for (p, prim) in mesh.primitives.iter().enumerate() {
-            let indices = prim
-                .indices
-                .iter()
-                .map(|i| ("indices".to_string(), i.value()));
-            let attributes = prim.attributes.iter().map(|(k, i)| match k {
-                gltf::json::validation::Checked::Valid(s) => (s.to_string(), i.value()),
-                gltf::json::validation::Checked::Invalid => ("an attribute".into(), i.value()),
-            });
-            for (name, i) in attributes.chain(indices) {
-                if i >= n {
-                    return Err(format!(
-                        "mesh {m}, primitive {p}: {name} names accessor {i}, but there are {n}"
-                    ));
-                }
-            }
-        }
-    }
-    Ok(())
-}
-
 /// A relative URI's path: its %-escapes decoded, if they make UTF-8.
 fn decode_uri(uri: &str) -> Option<String> {
     let b = uri.as_bytes();
@@ -343,61 +295,6 @@ fn decode_uri(uri: &str) -> Option<String> {
         }
     }
     String::from_utf8(out).ok()
-}
-
-/// Every buffer view within its buffer, and every accessor within its view (or, without
-/// one, refused: sparse accessors and accessors of zeros are not read).
-fn check_views(doc: &gltf::Document, buffers: &[gltf::buffer::Data]) -> Result<(), String> {
-    for v in doc.views() {
-        let len = buffers.get(v.buffer().index()).map_or(0, |b| b.len());
-        if v.offset()
-            .checked_add(v.length())
-            .is_none_or(|end| end > len)
-        {
-            return Err(format!(
-                "buffer view {} ({} bytes from {}) runs past the end of buffer {} ({len} bytes)",
-                v.index(),
-                v.length(),
-                v.offset(),
-                v.buffer().index()
-            ));
-        }
-    }
-    for a in doc.accessors() {
-        if a.sparse().is_some() {
-            return Err(format!(
-                "accessor {} is sparse, which snell does not read",
-                a.index()
-            ));
-        }
-        // glTF asks for at least one element, and the crate's readers count on it.
-        if a.count() == 0 {
-            return Err(format!(
-                "accessor {} has no elements (glTF asks for a count of at least 1)",
-                a.index()
-            ));
-        }
-        let Some(view) = a.view() else {
-            return Err(format!("accessor {} has no buffer view", a.index()));
-        };
-        let stride = view.stride().unwrap_or(a.size());
-        let end = (a.count() - 1)
-            .checked_mul(stride)
-            .and_then(|x| x.checked_add(a.offset()))
-            .and_then(|x| x.checked_add(a.size()));
-        if end.is_none_or(|end| end > view.length()) {
-            return Err(format!(
-                "accessor {} ({} elements of {} bytes from {}) runs past the end of buffer view {} ({} bytes)",
-                a.index(),
-                a.count(),
-                a.size(),
-                a.offset(),
-                view.index(),
-                view.length()
-            ));
-        }
-    }
-    Ok(())
 }
 
 /// One glTF mesh's triangle primitives merged into one mesh; points and lines are skipped
@@ -558,69 +455,6 @@ fn read_mesh(
             .collect();
     }
     Ok(GltfMesh { name, data, slots })
-}
-
-/// Each attribute snell reads is laid out as glTF requires (positions and normals three
-/// floats, uvs two floats or normalized bytes or shorts, indices unsigned scalars): the
-/// `gltf` crate's readers assume it (and assert it where debug assertions are on). The
-/// second uv set is read (and checked) only where `uv1` says.
-fn check_layouts(prim: &gltf::Primitive, uv1: bool) -> Result<(), String> {
-    use gltf::accessor::{DataType as T, Dimensions as D};
-    use gltf::mesh::Semantic as S;
-    let checks: [(S, &str, D, &[T]); 5] = [
-        (S::Positions, "POSITION", D::Vec3, &[T::F32]),
-        (S::Normals, "NORMAL", D::Vec3, &[T::F32]),
-        (S::Tangents, "TANGENT", D::Vec4, &[T::F32]),
-        (
-            S::TexCoords(0),
-            "TEXCOORD_0",
-            D::Vec2,
-            &[T::F32, T::U8, T::U16],
-        ),
-        (
-            S::TexCoords(1),
-            "TEXCOORD_1",
-            D::Vec2,
-            &[T::F32, T::U8, T::U16],
-        ),
-    ];
-    for (semantic, name, dims, types) in checks {
-        if semantic == S::TexCoords(1) && !uv1 {
-            continue;
-        }
-        if let Some(a) = prim.get(&semantic)
-            && (a.dimensions() != dims || !types.contains(&a.data_type()))
-        {
-            return Err(format!(
-                "its {name} accessor {} is {:?} of {:?}, not {dims:?} of {types:?}",
-                a.index(),
-                a.dimensions(),
-                a.data_type()
-            ));
-        }
-    }
-    if let Some(a) = prim.get(&S::Colors(0))
-        && (!matches!(a.dimensions(), D::Vec3 | D::Vec4)
-            || !matches!(a.data_type(), T::F32 | T::U8 | T::U16))
-    {
-        return Err(format!(
-            "its COLOR_0 accessor {} is {:?} of {:?}, not Vec3 or Vec4 of F32, U8 or U16",
-            a.index(),
-            a.dimensions(),
-            a.data_type()
-        ));
-    }
-    if let Some(a) = prim.indices()
-        && (a.dimensions() != D::Scalar || !matches!(a.data_type(), T::U8 | T::U16 | T::U32))
-    {
-        return Err(format!(
-            "its indices accessor {} is {:?} of {:?}, not unsigned scalars",
-            a.index(),
-            a.dimensions(),
-            a.data_type()
-        ));
-    }
-    Ok(())
 }
 
 /// A decoded glTF image as an `image` crate image (8- and 16-bit, and float).

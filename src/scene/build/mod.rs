@@ -5,7 +5,9 @@ use super::assets::AssetCache;
 use super::diag::{DocPath, Format, Problem, SceneError, did_you_mean, name_help, offset_of};
 use super::format::*;
 use super::meshes::{LoadedMesh, MeshCache, Palette};
-use super::{BuildStats, Fog, IntegratorSettings, Limits, Object, RenderSettings, Scene};
+use super::{
+    BuildStats, Fog, IntegratorSettings, Limits, MeshStats, Object, RenderSettings, Scene,
+};
 use crate::accel::Bvh;
 use crate::film::Filter;
 use crate::geometry::{Cone, Cuboid, Cylinder, Disk, Plane, Rect, Shape, Sphere, Torus, Triangle};
@@ -715,7 +717,12 @@ impl Builder<'_> {
                 .flatten()
                 .flatten()
                 .find(|l| Arc::ptr_eq(&l.mesh, m))
-                .map_or_else(String::new, |l| l.file.clone())
+                .map_or_else(MeshStats::default, |l| MeshStats {
+                    file: l.file.clone(),
+                    label: l.label.clone(),
+                    file_images: l.file_images,
+                    ..MeshStats::default()
+                })
         };
         let mut stats = std::mem::take(&mut self.stats);
         stats.record_objects(&objects, file_of);

@@ -61,12 +61,14 @@ impl Builder<'_> {
             );
             return None;
         }
+        let file_images = scene.images.iter().flatten().count();
         let mut images = material::Images::new(scene.images);
         // Scene materials for the file's materials, and for glTF's default one, made when
         // a mesh first uses them.
         let mut made: Vec<Option<usize>> = vec![None; scene.materials.len() + 1];
         let default = PbrMaterial::default();
         let mut meshes = vec![];
+        let mesh_names: Vec<String> = scene.meshes.iter().map(|m| m.name.clone()).collect();
         for m in scene.meshes {
             let mut slot_materials = vec![];
             for slot in &m.slots {
@@ -94,6 +96,9 @@ impl Builder<'_> {
         }
         let several = scene.instances.len() > 1;
         let mut placed = vec![];
+        // The nodes that place each mesh, for `snell check`.
+        let mut nodes_of = vec![vec![]; meshes.len()];
+        let mut mesh_of = vec![];
         for inst in scene.instances {
             let Some(node) = Transform::from_matrix(inst.matrix) else {
                 self.warnings.push(format!(
@@ -103,14 +108,25 @@ impl Builder<'_> {
                 continue;
             };
             let (mesh, slots) = &meshes[inst.mesh];
+            nodes_of[inst.mesh].push(inst.node.clone());
+            mesh_of.push(inst.mesh);
             placed.push(LoadedMesh {
                 mesh: mesh.clone(),
                 node: Some(node),
                 part: several.then_some(inst.node),
                 file: file.to_string(),
+                label: None,
+                file_images,
                 slot_materials: slots.clone(),
                 unread_mtl: vec![],
             });
+        }
+        for (p, k) in placed.iter_mut().zip(mesh_of) {
+            p.label = Some(format!(
+                "mesh `{}` ({})",
+                mesh_names[k],
+                gltf::named("node", &nodes_of[k])
+            ));
         }
         if placed.is_empty() {
             self.error_help(

@@ -37,6 +37,18 @@ metallic-map.gltf (+ pbr-maps.bin, metal-strip.png): the quad stretched to 6 x 2
 -3 to 3), under `ThreeMetals`: base colour factor pure red, roughness factor 0.5, metallic
 factor 1 times metal-strip.png, whose six texels' blue runs 0, 0, 128, 128, 255, 255 along
 u (green 255): a dielectric third, a half-metal third and a metal third.
+unread.gltf (+ cutout.bin): what snell does not read, each on the quad: node `Body` shows
+mesh `Skinned` under skin `Armature` (its joint the node `Joint`, which the animation `Wave`
+turns; no JOINTS_0 or WEIGHTS_0, which snell would not read either); node `Face` shows mesh
+`Morphed`, one morph target (the normals as displacements) at weight 0.5, and carries
+EXT_mesh_gpu_instancing (the positions as translations); node `Panels` shows mesh `Panels`,
+two primitives under `OldSchool` (KHR_materials_pbrSpecularGlossiness only) and `Frost`
+(KHR_materials_transmission 0.3 and KHR_materials_volume). `Skinned` is under `CarPaint`
+(metal, KHR_materials_clearcoat), `Morphed` under `Velvet` (KHR_materials_sheen and
+KHR_materials_specular); the material `Unused`, which no primitive names, has
+KHR_materials_anisotropy.
+no-bounds.gltf (+ two-cubes.bin): two-cubes.gltf with no `min` or `max` on its POSITION
+accessor (glTF asks for them; viewers read such files).
 The broken files (each with the same two-cubes.bin unless said):
   bad-accessor.gltf   the POSITION accessor claims more vertices than its view holds
   bad-index.gltf      an index points past the vertices (its own bad-index.bin)
@@ -325,6 +337,59 @@ def metallic_map():
     return doc
 
 
+def unread():
+    """unread.gltf: the quad under everything snell does not read (see the top)."""
+    doc, _ = cutout()
+    plain = {'POSITION': 0, 'NORMAL': 1, 'TEXCOORD_0': 2}
+    doc['extensionsUsed'] = [
+        'KHR_materials_clearcoat', 'KHR_materials_sheen', 'KHR_materials_specular',
+        'KHR_materials_pbrSpecularGlossiness', 'KHR_materials_transmission',
+        'KHR_materials_volume', 'KHR_materials_anisotropy', 'KHR_materials_emissive_strength',
+        'EXT_mesh_gpu_instancing']
+    doc['scenes'] = [{'name': 'Scene', 'nodes': [0, 1, 2, 3]}]
+    doc['nodes'] = [
+        {'name': 'Body', 'mesh': 0, 'skin': 0},
+        {'name': 'Joint', 'translation': [0, 1, 0]},
+        {'name': 'Face', 'mesh': 1, 'translation': [2, 0, 0],
+         'extensions': {'EXT_mesh_gpu_instancing': {'attributes': {'TRANSLATION': 0}}}},
+        {'name': 'Panels', 'mesh': 2, 'translation': [-2, 0, 0]},
+    ]
+    doc['skins'] = [{'name': 'Armature', 'joints': [1]}]
+    doc['meshes'] = [
+        {'name': 'Skinned', 'primitives': [{'attributes': plain, 'indices': 4, 'material': 0}]},
+        {'name': 'Morphed', 'weights': [0.5], 'primitives': [
+            {'attributes': plain, 'indices': 4, 'material': 1, 'targets': [{'POSITION': 1}]}]},
+        {'name': 'Panels', 'primitives': [
+            {'attributes': plain, 'indices': 4, 'material': 2},
+            {'attributes': plain, 'indices': 4, 'material': 3}]},
+    ]
+    doc['materials'] = [
+        {'name': 'CarPaint', 'pbrMetallicRoughness': {'metallicFactor': 1},
+         'extensions': {'KHR_materials_clearcoat': {
+             'clearcoatFactor': 1, 'clearcoatRoughnessFactor': 0.1}}},
+        {'name': 'Velvet', 'pbrMetallicRoughness': {'metallicFactor': 0},
+         'extensions': {'KHR_materials_sheen': {'sheenColorFactor': [1, 0, 0]},
+                        'KHR_materials_specular': {'specularFactor': 0.5}}},
+        {'name': 'OldSchool', 'extensions': {'KHR_materials_pbrSpecularGlossiness': {
+            'diffuseFactor': [0, 1, 0, 1], 'glossinessFactor': 0.5}}},
+        {'name': 'Frost', 'pbrMetallicRoughness': {'metallicFactor': 0},
+         'extensions': {'KHR_materials_transmission': {'transmissionFactor': 0.3},
+                        'KHR_materials_volume': {'thicknessFactor': 0.1,
+                                                 'attenuationColor': [1, 0.5, 0.5]}}},
+        {'name': 'Unused', 'extensions': {'KHR_materials_anisotropy': {'anisotropyStrength': 1}}},
+    ]
+    # The animation's times: the uvs' first four floats (0, 1, 1, 1) as scalars; its
+    # rotations: the tangents.
+    doc['accessors'].append({'bufferView': 2, 'componentType': 5126, 'count': 4,
+                             'type': 'SCALAR', 'min': [0], 'max': [1]})
+    doc['animations'] = [{'name': 'Wave', 'samplers': [
+        {'input': len(doc['accessors']) - 1, 'output': 3, 'interpolation': 'STEP'}],
+        'channels': [{'sampler': 0, 'target': {'node': 1, 'path': 'rotation'}}]}]
+    for key in ('textures', 'samplers', 'images'):
+        doc.pop(key)
+    return doc
+
+
 def as_glb(doc, data):
     """The document and its buffer (its images read from beside this script and moved
     into the buffer) as one GLB file's bytes."""
@@ -388,6 +453,10 @@ def main():
     with open(os.path.join(HERE, 'metal-strip.png'), 'wb') as f:
         f.write(png(6, 1, [(0, 255, b) for b in (0, 0, 128, 128, 255, 255)]))
     write('metallic-map.gltf', metallic_map())
+    write('unread.gltf', unread())
+    bounds = json.loads(json.dumps(doc))
+    del bounds['accessors'][0]['min'], bounds['accessors'][0]['max']
+    write('no-bounds.gltf', bounds)
     odd = lit()[0]
     odd['cameras'][0]['type'] = 'orthographic'
     write('camera-type.gltf', odd)
