@@ -130,6 +130,7 @@ impl RenderJob {
         let mut scene =
             crate::scene::load_frame(scene_path, limits, frame, assets).map_err(JobError::Scene)?;
         let load_time = start.elapsed();
+        let lighting = scene.lighting_warning();
         let s = &mut scene.settings;
         if let Some(c) = resumed {
             (s.width, s.height, s.spp, s.seed) = (c.width, c.height, c.spp, c.seed);
@@ -139,6 +140,7 @@ impl RenderJob {
         }
         overrides.apply(s);
         check_settings(s, limits)?;
+        scene.recheck_lighting(lighting);
         if let Some(available) = available_memory()
             && let Err(e) = memory_estimate(&scene).check(available)
         {

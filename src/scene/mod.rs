@@ -632,6 +632,49 @@ impl Scene {
         &self.materials[hit.material]
     }
 
+    /// What its integrator cannot light: Whitted lights surfaces by point, spot and
+    /// directional lights only (an environment shows, and emitting surfaces glow, but
+    /// neither lights anything); the path tracer finds no light in a scene without lights,
+    /// emitting surfaces, environment or background.
+    pub fn lighting_warning(&self) -> Option<String> {
+        if !self.lights.is_empty() {
+            return None;
+        }
+        let emits = self.materials.iter().any(|m| m.emission.is_some());
+        match self.settings.integrator.kind {
+            IntegratorKind::Whitted => {
+                let others = match (self.environment.is_some(), emits) {
+                    (true, true) => " (Whitted shows the environment and emitting surfaces but lights nothing by them; the path tracer does: --integrator path)",
+                    (true, false) => " (Whitted shows the environment but does not light with it; the path tracer does: --integrator path)",
+                    (false, true) => " (Whitted shows emitting surfaces but lights nothing by them; the path tracer does: --integrator path)",
+                    (false, false) => "",
+                };
+                Some(format!(
+                    "the scene has no lights Whitted uses: only ambient light will show{others}"
+                ))
+            }
+            IntegratorKind::Path => (!emits
+                && self.background == Color::ZERO
+                && self.environment.is_none())
+            .then(|| {
+                "the scene has no lights and a black background: the path tracer's image will be black"
+                    .into()
+            }),
+        }
+    }
+
+    /// [`Scene::lighting_warning`] again after its settings changed (an integrator given on
+    /// the command line): `before` was the warning for the settings it was built with.
+    pub fn recheck_lighting(&mut self, before: Option<String>) {
+        let after = self.lighting_warning();
+        if before != after {
+            if let Some(b) = before {
+                self.warnings.retain(|w| *w != b);
+            }
+            self.warnings.extend(after);
+        }
+    }
+
     /// A short human summary: counts of objects by type, lights, textures, materials.
     pub fn summary(&self) -> String {
         let mut kinds: BTreeMap<&str, usize> = BTreeMap::new();

@@ -483,6 +483,28 @@ fn a_render_of_days_is_told_so_before_it_starts() {
     // A quick render says nothing of its time.
     let scene = write_scene(&dir, "s.toml", GOOD);
     assert!(!stderr(&expect(&["render", &scene, "--spp", "64"], &dir, 0)).contains("will take"));
+    // Neither does a path-traced render of hours cut to a second by --time.
+    let o = expect(
+        &[
+            "render",
+            &scene,
+            "-o",
+            "capped.png",
+            "--integrator",
+            "path",
+            "--width",
+            "1024",
+            "--height",
+            "1024",
+            "--spp",
+            "65536",
+            "--time",
+            "1s",
+        ],
+        &dir,
+        0,
+    );
+    assert!(!stderr(&o).contains("will take"), "{}", stderr(&o));
 }
 
 /// `--integrator`, `--sampler` and `--clamp`: the path tracer renders any sample count,
@@ -751,4 +773,119 @@ fn time_stops_the_passes_and_writes_the_picture() {
         "{}",
         stderr(&o)
     );
+}
+
+/// Messages that say what is wrong and what to do: a port past 65535 is out of range (not
+/// "not a whole number"); a negative width says what a width takes (0 is refused too); an
+/// empty file asks for a `[camera]` table, the way TOML writes one; too many samples names
+/// --max-spp; Whitted on a scene lit only by its environment or by emitting surfaces says
+/// that it lights nothing by them.
+#[test]
+fn messages_say_what_the_value_takes() {
+    let dir = scratch("messages");
+    let o = expect(&["serve", "x.toml", "--port", "99999"], &dir, 2);
+    assert!(
+        stderr(&o).contains("`99999` is too large: give a whole number from 0 to 65535"),
+        "{}",
+        stderr(&o)
+    );
+    let o = expect(&["serve", "x.toml", "--port", "-1"], &dir, 2);
+    assert!(
+        stderr(&o).contains("not a whole number from 0"),
+        "{}",
+        stderr(&o)
+    );
+    let o = expect(&["serve", "x.toml", "--port", "eighty"], &dir, 2);
+    assert!(stderr(&o).contains("not a whole number"), "{}", stderr(&o));
+    let negative = write_scene(&dir, "n.toml", &GOOD.replace("width = 8", "width = -5"));
+    let o = expect(&["check", &negative], &dir, 2);
+    assert!(
+        stderr(&o).contains("`-5` is not allowed here: a whole number from 1 to 65536 pixels"),
+        "{}",
+        stderr(&o)
+    );
+    let empty = write_scene(&dir, "e.toml", "");
+    let o = expect(&["check", &empty], &dir, 2);
+    assert!(
+        stderr(&o).contains("add a `[camera]` table"),
+        "{}",
+        stderr(&o)
+    );
+    let scene = write_scene(&dir, "s.toml", GOOD);
+    let o = expect(
+        &["render", &scene, "--spp", "70000", "-o", "x.png"],
+        &dir,
+        2,
+    );
+    assert!(stderr(&o).contains("--max-spp"), "{}", stderr(&o));
+    let lit_by_env = GOOD.replace(
+        "[[lights]]\ntype = \"point\"\nposition = [0, 5, 0]\n",
+        "[environment]\ntype = \"constant\"\ncolor = 1\n[integrator]\ntype = \"path\"\n",
+    );
+    let env = write_scene(&dir, "env.toml", &lit_by_env);
+    // The file's path tracer is lit: no warning; Whitted from the command line: one.
+    let o = expect(&["render", &env, "-o", "a.png"], &dir, 0);
+    assert!(!stderr(&o).contains("warning"), "{}", stderr(&o));
+    let o = expect(
+        &["render", &env, "-o", "b.png", "--integrator", "whitted"],
+        &dir,
+        0,
+    );
+    assert!(
+        stderr(&o).contains("no lights Whitted uses")
+            && stderr(&o).contains("does not light with it")
+            && stderr(&o).contains("--integrator path"),
+        "{}",
+        stderr(&o)
+    );
+}
+
+/// A render that finishes removes its checkpoint, which has nothing left to continue, and
+/// says so (unless quiet).
+#[test]
+fn a_finished_render_says_it_removed_its_checkpoint() {
+    let dir = scratch("checkpoint-removed");
+    let scene = write_scene(&dir, "s.toml", GOOD);
+    // The path tracer saves after its first pass once the interval is past.
+    let every = [
+        "--integrator",
+        "path",
+        "--spp",
+        "64",
+        "--checkpoint-every",
+        "0.000001",
+    ];
+    let o = expect(
+        &[
+            &["render", &scene, "-o", "x.png", "--checkpoint", "c.ckpt"][..],
+            &every[..],
+        ]
+        .concat(),
+        &dir,
+        0,
+    );
+    assert!(
+        stderr(&o).contains("removed the checkpoint c.ckpt: the render is whole"),
+        "{}",
+        stderr(&o)
+    );
+    assert!(!dir.join("c.ckpt").exists());
+    let o = expect(
+        &[
+            &[
+                "render",
+                &scene,
+                "-o",
+                "y.png",
+                "--checkpoint",
+                "d.ckpt",
+                "-q",
+            ][..],
+            &every[..],
+        ]
+        .concat(),
+        &dir,
+        0,
+    );
+    assert!(stderr(&o).is_empty(), "{}", stderr(&o));
 }

@@ -326,9 +326,9 @@ fn whole<T: std::str::FromStr + num::Bounded>(s: &str) -> Result<T, String> {
     let s = s.trim();
     s.parse().map_err(|_| {
         // A whole number past the type's range is told the range, not that it is not one.
-        if s.parse::<i128>().is_ok() {
+        if s.parse::<i128>().is_ok_and(|v| v > 0) {
             format!(
-                "`{s}` is out of range: give a whole number from 0 to {}",
+                "`{s}` is too large: give a whole number from 0 to {}",
                 T::MAX_TEXT
             )
         } else {

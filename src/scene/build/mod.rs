@@ -355,11 +355,38 @@ fn serde_problem(
         return p;
     }
     if let Some(field) = between(&message, "missing field `", "`") {
-        let mut p = Problem::new(doc, format!("missing key `{field}`"));
+        let mut p = Problem::new(doc.clone(), format!("missing key `{field}`"));
         p.span = span;
-        p.help = Some(format!(
-            "add `{field} = ...` here (see docs/scene-format.md)"
-        ));
+        // The file's top level holds tables (`[camera]`); keys go inside them.
+        p.help = Some(if doc.0.is_empty() {
+            format!("add a `[{field}]` table (see docs/scene-format.md)")
+        } else {
+            format!("add `{field} = ...` here (see docs/scene-format.md)")
+        });
+        return p;
+    }
+    // A whole number of the wrong sign or size: say what the key takes, where a key says
+    // more than its type does (a width of 0 is refused too).
+    if let Some(n) = between(&message, "invalid value: integer `", "`") {
+        let key = match doc.0.last() {
+            Some(super::diag::Seg::Key(k)) => k.as_str(),
+            _ => "",
+        };
+        let range = match key {
+            "width" | "height" => {
+                format!(
+                    "from 1 to {} pixels",
+                    crate::scene::RenderSettings::MAX_SIDE
+                )
+            }
+            "samples" | "max_depth" | "rr_depth" => "from 1".to_string(),
+            _ => "from 0".to_string(),
+        };
+        let mut p = Problem::new(
+            doc,
+            format!("`{n}` is not allowed here: a whole number {range}"),
+        );
+        p.span = span;
         return p;
     }
     let mut p = Problem::new(
@@ -667,23 +694,6 @@ impl Builder<'_> {
             self.warnings
                 .push("the scene has no objects: the image will be the background".into());
         }
-        let emits = materials.iter().any(|m| m.emission.is_some());
-        // The path tracer is lit by the background (a uniform environment) or the
-        // environment too.
-        let path = settings.integrator.kind == IntegratorKind::Path;
-        if lights.is_empty() && !emits && !path {
-            self.warnings.push(if environment.is_some() {
-                "the scene has no lights: only ambient light will show (Whitted shows the environment but does not light with it; the path tracer does)".into()
-            } else {
-                "the scene has no lights: only ambient light will show".into()
-            });
-        } else if lights.is_empty() && !emits && background == Color::ZERO && environment.is_none()
-        {
-            self.warnings.push(
-                "the scene has no lights and a black background: the path tracer's image will be black"
-                    .into(),
-            );
-        }
         for (li, l) in lights.iter().enumerate() {
             if let Some(p) = l.position() {
                 for o in objects.iter().filter(|o| o.contains(p)) {
@@ -797,7 +807,7 @@ impl Builder<'_> {
                     .any(|&t| !matches!(textures[t].pattern, Pattern::Solid(_)))
             })
             .collect();
-        Scene {
+        let mut scene = Scene {
             camera,
             settings,
             background,
@@ -828,7 +838,9 @@ impl Builder<'_> {
             animation: None,
             source: "".into(),
             frame: 0,
-        }
+        };
+        scene.warnings.extend(scene.lighting_warning());
+        scene
     }
 
     fn settings(

@@ -220,7 +220,7 @@ fn render_job(
         for w in &scene.warnings {
             eprintln!("warning: {w}");
         }
-        warn_if_long(&scene, args.threads.map(usize::from));
+        warn_if_long(&scene, args.threads.map(usize::from), args.time);
     }
     let (w, h, spp) = (
         scene.settings.width,
@@ -551,18 +551,20 @@ fn render_tiles(
 
 /// Renders estimated at over an hour are told so before they start, with what would
 /// shorten them.
-fn warn_if_long(scene: &snell::Scene, threads: Option<usize>) {
+/// Warns of a render estimated to take over an hour (`time`, a `--time` cap, bounds the
+/// estimate where the path tracer's passes honour it).
+fn warn_if_long(scene: &snell::Scene, threads: Option<usize>, time: Option<std::time::Duration>) {
     use snell::render::estimate::{PROBE_FROM_SAMPLES, in_words, render_time};
     let s = &scene.settings;
     if (s.width as u64) * (s.height as u64) * (s.spp as u64) < PROBE_FROM_SAMPLES {
         return;
     }
     let threads = threads.unwrap_or_else(rayon::current_num_threads);
-    let e = render_time(
-        scene,
-        snell::integrator::chosen(scene.settings.integrator.kind),
-        threads,
-    );
+    let integrator = snell::integrator::chosen(scene.settings.integrator.kind);
+    if time.is_some_and(|t| t.as_secs_f64() <= 3600.0) && integrator.uses_sampler() {
+        return;
+    }
+    let e = render_time(scene, integrator, threads);
     if e.seconds > 3600.0 {
         eprintln!(
             "warning: this render will take about {} on {threads} threads ({} x {} at {} spp, about {:.2} M samples/s from a probe of {} samples); Ctrl-C stops it and writes what is done",

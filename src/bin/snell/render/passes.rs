@@ -20,7 +20,17 @@ pub(crate) fn render_passes(
     // The pixels of the tiles rendered (a region's), which the bar counts.
     let pixels = film_grid(s.width, s.height).pixels_in(run.region);
     let mut film = earlier.unwrap_or_else(|| Film::new(s.width, s.height));
+    let first = film_samples_in(&film, run.region);
     run.bar.set_length(pixels * s.spp as u64);
+    // The ETA is this render's own: the samples left at the rate of the passes finished
+    // (none before the first ends: a guess from the first samples of a pass was ten times
+    // too long), and no more than what `--time` leaves.
+    if let Ok(style) = indicatif::ProgressStyle::with_template(
+        "{spinner} rendering [{elapsed_precise}] {wide_bar} {percent:>3}%  {msg}",
+    ) {
+        run.bar.set_style(style);
+    }
+    let mut eta = String::from("ETA …");
     // The pass under way: the bar's position at its start, and its samples per pixel.
     let (base, step) = (AtomicU64::new(0), AtomicU64::new(0));
     let progress = |n: u64| {
@@ -52,11 +62,21 @@ pub(crate) fn render_passes(
                 let error = error
                     .map(|e| format!(", error ≈ {:.2} %", 100.0 * e))
                     .unwrap_or_default();
-                run.bar.set_message(format!("{from} → {to} spp{error}  "));
+                run.bar
+                    .set_message(format!("{from} → {to} spp{error}  {eta}"));
             }
-            PassEvent::Done { .. } => {
+            PassEvent::Done { samples, elapsed } => {
                 if !run.bar.is_hidden() {
                     error = film.estimated_error_in(run.region);
+                    let taken = elapsed.as_secs_f64().max(1e-6);
+                    let added = samples.saturating_sub(first) as f64;
+                    if added > 0.0 {
+                        let mut left = taken / added * s.spp.saturating_sub(samples) as f64;
+                        if let Some(t) = time {
+                            left = left.min((t.as_secs_f64() - taken).max(0.0));
+                        }
+                        eta = format!("ETA {}", snell::render::estimate::in_words(left));
+                    }
                 }
                 if let Some(path) = run.checkpoint
                     && last_save.elapsed() >= run.every
