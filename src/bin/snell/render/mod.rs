@@ -550,9 +550,8 @@ fn render_tiles(
 }
 
 /// Renders estimated at over an hour are told so before they start, with what would
-/// shorten them.
-/// Warns of a render estimated to take over an hour (`time`, a `--time` cap, bounds the
-/// estimate where the path tracer's passes honour it).
+/// shorten them; `time` (a `--time` cap) bounds the estimate where the path tracer's
+/// passes honour it.
 fn warn_if_long(scene: &snell::Scene, threads: Option<usize>, time: Option<std::time::Duration>) {
     use snell::render::estimate::{PROBE_FROM_SAMPLES, in_words, render_time};
     let s = &scene.settings;
