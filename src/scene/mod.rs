@@ -20,7 +20,7 @@ pub use build::{
 pub use detail::UvFrame;
 pub use diag::{DocPath, Format, Problem, SceneDiagnostic, SceneError, Seg, did_you_mean};
 pub use footprint::{RayDifferentials, SurfacePatch};
-pub use format::{IntegratorKind, schema};
+pub use format::{IntegratorKind, schema, schema_of_types};
 pub use limits::{Limits, MemoryEstimate, available_memory, memory_estimate};
 
 use crate::accel::Bvh;

@@ -5,6 +5,7 @@
 //! `Serialize`, which is why a few of these derive it).
 
 mod animation;
+mod constraints;
 mod environment;
 mod integrator;
 mod material;
@@ -638,10 +639,19 @@ object_defs! {
     }
 }
 
-/// The JSON Schema of a scene file, generated from these types: what `snell schema` prints,
-/// for editors to complete keys and flag mistakes as one types. Draft 7, which editors (VS
-/// Code's JSON support, taplo) understand fully.
+/// The JSON Schema of a scene file: what `snell schema` prints, for editors to complete keys
+/// and flag mistakes as one types. Draft 7, which editors (VS Code's JSON support, taplo)
+/// understand fully. Generated from these types ([`schema_of_types`]), with the ranges and
+/// the rules between keys that the scene builder checks (`constraints.rs`).
 pub fn schema() -> serde_json::Value {
+    let mut schema = schema_of_types();
+    constraints::constrain(&mut schema);
+    schema
+}
+
+/// The schema of these types alone: what the parser reads before the builder checks any
+/// value (tests compare the two).
+pub fn schema_of_types() -> serde_json::Value {
     let mut schema = schemars::generate::SchemaSettings::draft07()
         .into_generator()
         .into_root_schema_for::<SceneFile>();
