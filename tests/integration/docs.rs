@@ -25,3 +25,217 @@ fn the_readme_caption_matches_the_seed_scene_and_its_picture() {
     let picture = image::open(repo("docs/images/seed.png")).unwrap();
     assert_eq!((picture.width(), picture.height()), (w, h));
 }
+
+/// The samples per pixel a caption gives: the number before its first ` spp`.
+fn caption_spp(caption: &str) -> Option<u32> {
+    let before = &caption[..caption.find(" spp")?];
+    let digits: String = before
+        .chars()
+        .rev()
+        .take_while(char::is_ascii_digit)
+        .collect();
+    digits.chars().rev().collect::<String>().parse().ok()
+}
+
+/// One line of docs/images/make.sh: `render NAME SCENE [FLAGS...]`.
+struct Made {
+    name: String,
+    scene: String,
+    flags: Vec<String>,
+}
+
+impl Made {
+    fn flag(&self, name: &str) -> Option<u32> {
+        let i = self.flags.iter().position(|f| f == name)?;
+        self.flags.get(i + 1)?.parse().ok()
+    }
+}
+
+fn made() -> Vec<Made> {
+    let script = std::fs::read_to_string(repo("docs/images/make.sh")).unwrap();
+    script
+        .lines()
+        .filter_map(|l| l.strip_prefix("render "))
+        .map(|l| {
+            let mut words = l.split_whitespace().map(str::to_string);
+            Made {
+                name: words.next().unwrap(),
+                scene: words.next().unwrap(),
+                flags: words.collect(),
+            }
+        })
+        .collect()
+}
+
+/// Every picture of the README and docs/ is made by docs/images/make.sh from a scene file
+/// (but Mitsuba's and the browser's, which the script names), at the size it has, and each
+/// caption's samples per pixel are the ones the script renders with: the pictures and their
+/// captions cannot drift apart.
+#[test]
+fn every_picture_is_made_by_the_script_with_the_samples_its_caption_gives() {
+    let lines = made();
+    let (mut sized, mut captions) = (0, 0);
+    for m in &lines {
+        // The script writes the far checker read at points from a copy it makes.
+        let scene_path = repo(&m.scene.replace(".point.toml", ".toml"));
+        let scene = snell::scene::load(&scene_path).unwrap_or_else(|e| panic!("{}: {e}", m.scene));
+        let s = &scene.settings;
+        let (w, h) = (
+            m.flag("--width").unwrap_or(s.width),
+            m.flag("--height").unwrap_or(s.height),
+        );
+        let spp = m.flag("--spp").unwrap_or(s.spp);
+        let picture = image::open(repo(&format!("docs/images/{}.png", m.name)))
+            .unwrap_or_else(|e| panic!("docs/images/{}.png: {e}", m.name));
+        assert_eq!((picture.width(), picture.height()), (w, h), "{}", m.name);
+        sized += 1;
+        // The caption: the lines after the picture's, up to the next line with a picture.
+        let readme = std::fs::read_to_string(repo("README.md")).unwrap();
+        let needle = format!("docs/images/{}.png", m.name);
+        if let Some(at) = readme.find(&needle) {
+            let after = &readme[at..];
+            let after = &after[after.find('\n').unwrap_or(after.len())..];
+            let caption = after.split("\n![").next().unwrap();
+            if let Some(n) = caption_spp(caption) {
+                assert_eq!(
+                    n, spp,
+                    "{}: the caption says {n} spp, the script renders {spp}",
+                    m.name
+                );
+                captions += 1;
+            }
+        }
+    }
+    assert_eq!(sized, lines.len());
+    assert_eq!(
+        (lines.len(), captions),
+        (22, 7),
+        "pictures made, captions with samples"
+    );
+    // Every picture the pages show is one of the script's (or one it names).
+    let script = std::fs::read_to_string(repo("docs/images/make.sh")).unwrap();
+    let mut shown = 0;
+    for page in [
+        "README.md",
+        "docs/debugging.md",
+        "docs/scene-format.md",
+        "docs/preview.md",
+    ] {
+        let text = std::fs::read_to_string(repo(page)).unwrap();
+        for (i, _) in text.match_indices("images/") {
+            let rest = &text[i + "images/".len()..];
+            let Some(end) = rest.find(".png") else {
+                continue;
+            };
+            let name = &rest[..end];
+            if name.contains(['(', ')', ' ', '[']) {
+                continue;
+            }
+            shown += 1;
+            // A debug view's picture: `NAME.VIEW` beside NAME's, from `--aov`.
+            let view = name.split_once('.').is_some_and(|(base, view)| {
+                lines.iter().any(|m| {
+                    m.name == base
+                        && m.flags.windows(2).any(|w| {
+                            w[0] == "--aov" && (w[1] == "all" || w[1].split(',').any(|v| v == view))
+                        })
+                })
+            });
+            assert!(
+                view || lines.iter().any(|m| m.name == name)
+                    || script.contains(&format!("{name}.png")),
+                "{page} shows docs/images/{name}.png, which docs/images/make.sh does not make"
+            );
+        }
+    }
+    assert!(shown >= 30, "{shown} pictures shown");
+}
+
+/// The options a subcommand's `--help` lists (not the flags its prose mentions).
+fn options_of(command: &str) -> Vec<String> {
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_snell"))
+        .args([command, "--help"])
+        .output()
+        .unwrap();
+    let help = String::from_utf8(out.stdout).unwrap();
+    let mut options: Vec<String> = help
+        .lines()
+        .filter_map(|l| {
+            let l = l.trim_start();
+            let l = l
+                .strip_prefix('-')
+                .filter(|r| !r.starts_with('-'))
+                .map_or(l, |r| r.split_once(", ").map_or(l, |(_, rest)| rest));
+            let name = l.strip_prefix("--")?;
+            let end = name
+                .find(|c: char| !(c.is_ascii_lowercase() || c == '-'))
+                .unwrap_or(name.len());
+            Some(format!("--{}", &name[..end]))
+        })
+        .filter(|o| o != "--help")
+        .collect();
+    options.sort();
+    options.dedup();
+    options
+}
+
+/// The flags a synopsis writes for `snell COMMAND`: its line and the lines under it, with
+/// `[LIMITS]` standing for the limit flags the synopsis spells out below.
+fn synopsis_flags(text: &str, command: &str) -> Vec<String> {
+    let block = text
+        .split("```text\n")
+        .nth(1)
+        .and_then(|b| b.split("```").next())
+        .unwrap_or("");
+    let start = format!("snell {command} ");
+    let mut lines = block
+        .lines()
+        .skip_while(|l| !l.starts_with(&start) && *l != format!("snell {command}"));
+    let mut text = String::new();
+    if let Some(first) = lines.next() {
+        text += first;
+        for l in lines.take_while(|l| l.starts_with(' ')) {
+            text += l;
+        }
+    }
+    if text.contains("[LIMITS]") {
+        text += block.split("LIMITS:").nth(1).unwrap_or("");
+    }
+    let mut flags: Vec<String> = text
+        .split(|c: char| !(c.is_ascii_lowercase() || c == '-'))
+        .filter(|w| w.starts_with("--") && w.len() > 2)
+        .map(str::to_string)
+        .collect();
+    if text.contains(" -o ") || text.contains("[-o ") {
+        flags.push("--output".into());
+    }
+    if text.contains("[-q]") {
+        flags.push("--quiet".into());
+    }
+    flags.sort();
+    flags.dedup();
+    flags
+}
+
+/// The README's synopsis (and the preview page's) name exactly the options each command's
+/// `--help` lists, no more and no fewer.
+#[test]
+fn the_synopses_give_every_option_and_no_other() {
+    let readme = std::fs::read_to_string(repo("README.md")).unwrap();
+    let mut checked = 0;
+    for command in ["render", "check", "merge", "explain", "serve", "schema"] {
+        assert_eq!(
+            synopsis_flags(&readme, command),
+            options_of(command),
+            "the README's `snell {command}` against its --help"
+        );
+        checked += 1;
+    }
+    let preview = std::fs::read_to_string(repo("docs/preview.md")).unwrap();
+    assert_eq!(
+        synopsis_flags(&preview, "serve"),
+        options_of("serve"),
+        "preview.md"
+    );
+    assert_eq!(checked, 6);
+}

@@ -315,3 +315,61 @@ fn a_path_tracers_sample_is_explained_and_adds_up() {
         "{json}"
     );
 }
+
+/// docs/debugging.md's explain examples are what `snell explain` prints: each line of a
+/// block under `$ snell explain ...` (cut short with ` ...` where the page shortens it, or
+/// with `...` standing for what it leaves out) is a line of the command's output, in order.
+#[test]
+fn the_debugging_guides_examples_are_what_explain_prints() {
+    let page = std::fs::read_to_string(repo("docs/debugging.md")).unwrap();
+    let (mut commands, mut lines) = (0, 0);
+    for block in page.split("```text\n").skip(1) {
+        let block = block.split("```").next().unwrap();
+        let mut rest = block.lines().peekable();
+        while let Some(line) = rest.next() {
+            let Some(args) = line.strip_prefix("$ snell explain ") else {
+                continue;
+            };
+            let out = std::process::Command::new(env!("CARGO_BIN_EXE_snell"))
+                .arg("explain")
+                .args(args.split_whitespace())
+                .current_dir(repo(""))
+                .output()
+                .unwrap();
+            assert!(out.status.success(), "{line}");
+            let printed = String::from_utf8(out.stdout).unwrap();
+            let mut printed = printed.lines();
+            commands += 1;
+            while let Some(expected) = rest.next_if(|l| !l.starts_with("$ ")) {
+                // `...` stands for what the page leaves out of a line.
+                let parts: Vec<&str> = expected
+                    .trim_end_matches(" ...")
+                    .split("...")
+                    .map(str::trim_end)
+                    .collect();
+                let fits = |l: &str| {
+                    let mut at = 0;
+                    parts.iter().enumerate().all(|(i, p)| {
+                        let p = if i > 0 { p.trim_start() } else { p };
+                        match l[at..].find(p) {
+                            Some(j) if i > 0 || j == 0 => {
+                                at += j + p.len();
+                                true
+                            }
+                            _ => false,
+                        }
+                    })
+                };
+                assert!(
+                    printed.any(fits),
+                    "docs/debugging.md: `{expected}` is not printed by `snell explain {args}` (in order)"
+                );
+                lines += 1;
+            }
+        }
+    }
+    assert!(
+        commands >= 5 && lines >= 15,
+        "{commands} commands, {lines} lines checked"
+    );
+}

@@ -1,5 +1,5 @@
 //! `snell merge`: region files (`render --region ... -o PART.exr`) back into the whole
-//! image, written as a PNG or EXR with the same bytes as one render of it.
+//! image: a PNG of the same bytes as one render's, or an EXR of the same pixels.
 
 use snell::output::PendingOutput;
 use snell::output::merge::{merge, read_region};
