@@ -238,7 +238,9 @@ impl Path {
             skip = scene.leaving(&hit, outward);
             depth += 1;
             rays.secondary += 1;
-            if depth > settings.rr_depth + 1 {
+            // `depth` is now the bounces so far plus one: roulette from the `rr_depth`-th
+            // bounce on, as Mitsuba's `depth >= rr_depth` after its bounce count rises.
+            if depth > settings.rr_depth {
                 let q = ((beta * eta_scale).max_element()).min(0.95);
                 let survived = sampler.next_choice() < q;
                 if let Some(r) = &mut record {

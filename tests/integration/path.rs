@@ -204,8 +204,13 @@ fn cornell(spp: u32, seed: u64, sampler: SamplerKind) -> Image {
 /// independent sampler, made by
 /// `snell render scenes/cornell.toml --width 32 --height 32 --spp 65536 --sampler independent --seed 1000 -o tests/data/cornell-32-ref.exr`.
 fn cornell_reference() -> Vec<[f32; 3]> {
-    let img = image::open(repo("tests/data/cornell-32-ref.exr"))
-        .expect("the stored Cornell reference")
+    read_32("tests/data/cornell-32-ref.exr")
+}
+
+/// A 32 x 32 EXR of the repository.
+fn read_32(path: &str) -> Vec<[f32; 3]> {
+    let img = image::open(repo(path))
+        .unwrap_or_else(|e| panic!("{path}: {e}"))
         .to_rgb32f();
     assert_eq!((img.width(), img.height()), (32, 32));
     img.pixels().map(|p| p.0).collect()
@@ -221,11 +226,25 @@ fn cornell_box_agrees_per_pixel_with_its_reference() {
     agrees_with_the_reference(scene);
 }
 
+/// The Cornell box against Mitsuba 3.9.1's own render of its `cornell_box()`
+/// (tests/data/mitsuba/cornell-32.exr, 65536 samples a pixel, written by
+/// cornell_fixture.py beside it), by the same per-pixel z-test: snell's path tracer gives
+/// Mitsuba's picture, up to noise, pixel by pixel.
+#[test]
+fn cornell_box_agrees_per_pixel_with_mitsubas() {
+    let scene = snell::scene::load(&repo("scenes/cornell.toml")).unwrap();
+    agrees_with(scene, &read_32("tests/data/mitsuba/cornell-32.exr"));
+}
+
 /// [`cornell_box_agrees_per_pixel_with_its_reference`]'s z-test of `scene` (the Cornell box,
 /// perhaps built another way) against the stored reference.
-fn agrees_with_the_reference(mut scene: snell::scene::Scene) {
+fn agrees_with_the_reference(scene: snell::scene::Scene) {
+    agrees_with(scene, &cornell_reference());
+}
+
+/// The z-test of `scene` against `reference`.
+fn agrees_with(mut scene: snell::scene::Scene, reference: &[[f32; 3]]) {
     const K: usize = 16;
-    let reference = cornell_reference();
     let renders: Vec<Image> = (0..K)
         .map(|k| {
             let s = &mut scene.settings;
@@ -428,4 +447,44 @@ fn the_estimated_error_is_the_pictures_error() {
         assert!(estimated < 0.6 * last, "{estimated} after {last}");
         last = estimated;
     }
+}
+
+/// Russian roulette is first played after bounce `rr_depth`, as Mitsuba's `depth >= rr_depth`
+/// does (a path that never leaves a closed box, so every bounce happens): the first vertex
+/// that records it is the `rr_depth`-th surface met, whose bounce is bounce `rr_depth`.
+#[test]
+fn roulette_starts_after_rr_depth_bounces_as_mitsubas() {
+    let dir = super::scratch("roulette");
+    let mut checked = 0;
+    for rr in [1u32, 2, 5] {
+        let scene = format!(
+            "[image]\nwidth = 4\nheight = 4\nsamples = 1\nmax_depth = 40\n\
+             [integrator]\ntype = \"path\"\nrr_depth = {rr}\n\
+             [camera]\nposition = [0, 0, 0]\nlook_at = [0, 0, -1]\n\
+             [materials.white]\ntype = \"diffuse\"\ncolor = 0.99\nemission = 0.1\n\
+             [[objects]]\ntype = \"sphere\"\nradius = 5\nmaterial = \"white\"\n"
+        );
+        std::fs::write(dir.join("box.toml"), scene).unwrap();
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_snell"))
+            .args(["explain", "box.toml", "--pixel", "1,1", "--json"])
+            .current_dir(&dir)
+            .output()
+            .unwrap();
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let doc: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+        let vertices = doc["path"]["vertices"].as_array().unwrap();
+        assert!(
+            vertices.len() > rr as usize,
+            "rr_depth {rr}: {} vertices",
+            vertices.len()
+        );
+        let first = vertices.iter().position(|v| !v["roulette"].is_null());
+        assert_eq!(first, Some(rr as usize - 1), "rr_depth {rr}");
+        checked += 1;
+    }
+    assert_eq!(checked, 3);
 }

@@ -12,8 +12,8 @@ pub struct IntegratorDef {
     pub kind: IntegratorKind,
     /// Path: where the random numbers come from, `sobol` (default) or `independent`.
     pub sampler: SamplerDef,
-    /// Path: the depth (segments, the camera ray is 1) from which Russian roulette may end
-    /// a path (default 5, as Mitsuba).
+    /// Path: the bounces after which Russian roulette may end a path, played first after
+    /// bounce `rr_depth` (default 5, as Mitsuba's `rr_depth`).
     pub rr_depth: u32,
     /// Path: the largest value a sample may add to a pixel, per channel (default: no clamp).
     /// Clamping removes fireflies and darkens the image: it is biased.
