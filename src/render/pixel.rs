@@ -124,7 +124,9 @@ pub fn add_stratified(
         // they stay in registers across the loop.
         let (mut s, mut w, mut u, mut q) = (sum, weight, unsigned, sum_sq);
         for ((ray, sign), &c) in batch.iter().zip(signs).zip(colors.iter()) {
-            let c = checked(scene, c, ray, x, y, bad);
+            let Some(c) = checked(scene, c, ray, x, y, bad) else {
+                continue;
+            };
             s += c * *sign;
             w += sign;
             u += c;
@@ -172,12 +174,20 @@ pub fn add_stratified(
     pixel.add_sums(sum, weight, unsigned, sum_sq, s.spp);
 }
 
-/// `c`, or black where it is NaN or infinite: a non-finite sample would poison the whole
-/// pixel, so it is left out, counted and its place kept as an example.
+/// `c`, or `None` where it is NaN or infinite: a non-finite sample would poison the whole
+/// pixel, so it is left out of the pixel's value (the pixel is the mean of its other
+/// samples), counted, and its place kept as an example.
 #[inline]
-fn checked(scene: &Scene, c: Color, ray: &Ray, x: u32, y: u32, bad: &mut BadSamples) -> Color {
+fn checked(
+    scene: &Scene,
+    c: Color,
+    ray: &Ray,
+    x: u32,
+    y: u32,
+    bad: &mut BadSamples,
+) -> Option<Color> {
     if c.is_finite() {
-        return c;
+        return Some(c);
     }
     bad.count += 1;
     if bad.examples.len() < BadSamples::EXAMPLES {
@@ -188,7 +198,7 @@ fn checked(scene: &Scene, c: Color, ray: &Ray, x: u32, y: u32, bad: &mut BadSamp
             nan: c.is_nan(),
         });
     }
-    Color::ZERO
+    None
 }
 
 /// Starts sample `index` of pixel `(x, y)` in `sampler` and places it on the film by the
@@ -238,7 +248,12 @@ pub fn add_samples(
         let sign = if signed { filter_sign } else { 1.0 };
         let ray = camera_ray(camera, &mut sampler, px, py);
         let c = integrator.radiance_sampled(scene, &ray, &mut sampler, rays);
-        pixel.add(checked(scene, c, &ray, x, y, bad), sign);
+        match checked(scene, c, &ray, x, y, bad) {
+            Some(c) => pixel.add(c, sign),
+            // Counted among the pixel's samples (passes take each index once), but not in
+            // its value.
+            None => pixel.add_sums(Color::ZERO, 0.0, Color::ZERO, 0.0, 1),
+        }
     }
 }
 

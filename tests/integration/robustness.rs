@@ -62,6 +62,28 @@ fn non_finite_samples_are_left_out_and_reported_with_pixel_and_object() {
     );
     // The floor is unaffected.
     assert!(r.image.pixels[(23 * 32) as usize].max_element() > 0.0);
+    // Left out, not counted as black: below the horizon (rows 11 and 12 mix floor and
+    // sky), a pixel the ball's edge crosses is the mean of its floor samples, as bright as
+    // the floor (lit almost only by the huge ambient term, the same everywhere), not darker
+    // by the share of the ball's bad samples.
+    let lit: Vec<f32> = r
+        .image
+        .pixels
+        .iter()
+        .enumerate()
+        .filter(|(i, _)| i / 32 >= 14)
+        .map(|(_, p)| p.max_element())
+        .filter(|&v| v > 0.0)
+        .collect();
+    let brightest = lit.iter().cloned().fold(0.0f32, f32::max);
+    let dim = lit.iter().filter(|&&v| v < 0.8 * brightest).count();
+    assert!(lit.len() > 200, "{} lit pixels", lit.len());
+    assert_eq!(
+        dim,
+        0,
+        "{dim} of {} lit pixels darker than the floor",
+        lit.len()
+    );
     // Same report at any thread count.
     let one = snell::render::render(&scene, &Whitted, Some(1), &|_| {}).unwrap();
     assert_eq!(one.bad_samples, r.bad_samples);
