@@ -1,7 +1,7 @@
 //! The Trowbridge-Reitz (GGX) distribution of microfacet normals, with Smith's shadowing and
 //! Heitz's sampling of the normals visible from a direction (2018), in the local frame.
-//! `alpha` is the width of the distribution along x and y (roughness squared, as Mitsuba
-//! and pbrt take a user's roughness).
+//! `alpha` is the width of the distribution along x and y, as Mitsuba's `alpha` (Blender's
+//! roughness r is alpha = r^2).
 
 use crate::math::sampling::uniform_disk_concentric;
 use crate::math::{Vec2, Vec3A};

@@ -23,7 +23,7 @@ pub struct Limits {
 impl Default for Limits {
     fn default() -> Self {
         Limits {
-            max_pixels: 1 << 28,         // 16384 x 16384: 13 GiB of film and image
+            max_pixels: 1 << 28,         // 16384 x 16384: 14 GiB of film and image
             max_spp: 65_536,             // 256 x 256
             max_depth: 64,               // far beyond what a picture shows
             max_texture_pixels: 1 << 28, // 16384 x 16384: 3 GiB decoded
