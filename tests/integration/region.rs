@@ -275,3 +275,33 @@ fn merge_refuses_a_region_file_of_an_enormous_image() {
     assert_eq!(o.status.code(), Some(2), "{err}");
     assert!(err.contains("100000 x 100000"), "{err}");
 }
+
+/// A merge that cannot write its output fails as a render does (exit 1), and a name of no
+/// known format is a bad command line (exit 2).
+#[test]
+fn merge_exits_as_render_does_when_it_cannot_write() {
+    let dir = scratch("merge-exit");
+    std::fs::write(dir.join("a.exr"), b"not read: the output fails first").unwrap();
+    let no_folder = dir.join("no/such/folder/whole.png");
+    let cd = |args: &[&str]| {
+        Command::new(env!("CARGO_BIN_EXE_snell"))
+            .args(args)
+            .current_dir(&dir)
+            .output()
+            .unwrap()
+    };
+    let o = cd(&["merge", "-o", &no_folder.to_string_lossy(), "a.exr"]);
+    assert_eq!(
+        o.status.code(),
+        Some(1),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    let o = cd(&["merge", "-o", "whole.tiff", "a.exr"]);
+    assert_eq!(
+        o.status.code(),
+        Some(2),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+}

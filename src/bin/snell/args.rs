@@ -194,7 +194,7 @@ pub(crate) struct RenderArgs {
     #[arg(long)]
     pub(crate) stats: bool,
     /// Debug views to write besides the picture, comma-separated: normal, uv, depth,
-    /// albedo, object, material, bounces, or all. With a .png output each goes to its own
+    /// albedo, object, material, bounces, variance (the path tracer's), or all. With a .png output each goes to its own
     /// file (seed.normal.png ...); with .exr, all go into the one file as layers.
     #[arg(long, value_name = "NAMES", value_delimiter = ',', value_parser = parse_aov)]
     pub(crate) aov: Vec<Vec<Aov>>,
@@ -202,8 +202,8 @@ pub(crate) struct RenderArgs {
     /// continued with --resume FILE. Removed once the render is complete.
     #[arg(long, value_name = "FILE")]
     pub(crate) checkpoint: Option<PathBuf>,
-    /// Continue the render saved in FILE (scene, size, samples, seed and output come from
-    /// it); the result is the same, byte for byte, as a render never stopped.
+    /// Continue the render saved in FILE (scene, size, samples, seed, integrator and output
+    /// come from it); the result is the same, byte for byte, as a render never stopped.
     #[arg(long, value_name = "FILE")]
     pub(crate) resume: Option<PathBuf>,
     /// Seconds between checkpoints.

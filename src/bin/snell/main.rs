@@ -1,5 +1,5 @@
 //! The `snell` command line: parse arguments, call the library, print, and map errors to
-//! exit codes (0 done, 1 render or write failed, 2 bad command line or scene).
+//! exit codes (0 done, 1 render or write failed, 2 bad command line or scene, 130 interrupted).
 
 use clap::{Parser, Subcommand};
 use snell::scene::{Limits, RenderSettings, SceneError};

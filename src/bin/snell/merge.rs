@@ -31,11 +31,17 @@ pub(crate) fn merge_command(args: MergeArgs) -> ExitCode {
         );
         return ExitCode::from(2);
     }
+    // As render: a name of no known format is a bad command line (2), a folder that cannot
+    // be written a failure to write (1).
     let pending = match PendingOutput::create(&args.output) {
         Ok(p) => p,
         Err(e) => {
             eprintln!("error: {e}");
-            return ExitCode::from(2);
+            let code = match e {
+                snell::output::OutputError::UnknownFormat(_) => 2,
+                _ => 1,
+            };
+            return ExitCode::from(code);
         }
     };
     let mut files = Vec::with_capacity(args.parts.len());
