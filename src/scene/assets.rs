@@ -3,7 +3,7 @@
 //! (and build the meshes' BVHs) once. A build that finds nothing here reads the files as
 //! a lone build does; what it finds gives the same scene as reading them again would.
 
-use super::build::Builder;
+use super::load::Builder;
 use super::meshes::{LoadedMesh, Palette};
 use crate::material::Material;
 use crate::texture::{ColorSpace, ImageData, ImageLoadError, Texture};

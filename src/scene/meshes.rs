@@ -3,9 +3,9 @@
 //! materials. A glTF file is a scene of its own: each of its meshes is built once, and an
 //! object placing the file becomes one object per node that places a mesh (gltf.rs here).
 
-use super::build::Builder;
 use super::diag::{DocPath, name_help};
 use super::format::{MeshDef, MeshObjectDef};
+use super::load::Builder;
 use crate::geometry::Mesh;
 use crate::material::Material;
 use crate::mesh_file::{self, MeshInputError};

@@ -1,8 +1,7 @@
-//! The scene: read from a file (`format`), checked and resolved (`build`), then immutable
+//! The scene: read from a file (`format`), checked and resolved (`load`), then immutable
 //! and shared by every render thread.
 
 mod assets;
-mod build;
 mod cutout;
 mod detail;
 mod diag;
@@ -10,18 +9,19 @@ mod footprint;
 pub mod format;
 mod gltf;
 mod limits;
+mod load;
 mod meshes;
 mod mtl;
 
 pub use assets::AssetCache;
-pub use build::{
-    Animation, MAX_FRAMES, MAX_MAGNITUDE, load, load_frame, load_str, load_str_frame, load_with,
-};
 pub use detail::UvFrame;
 pub use diag::{DocPath, Format, Problem, SceneDiagnostic, SceneError, Seg, did_you_mean};
 pub use footprint::{RayDifferentials, SurfacePatch};
 pub use format::{IntegratorKind, schema, schema_of_types};
 pub use limits::{Limits, MemoryEstimate, available_memory, memory_estimate};
+pub use load::{
+    Animation, MAX_FRAMES, MAX_MAGNITUDE, load, load_frame, load_str, load_str_frame, load_with,
+};
 
 use crate::accel::Bvh;
 pub use crate::accel::Skip;

@@ -2,8 +2,8 @@
 //! the file says (`Pm` a metal, `illum` 6 and 7 glass, 4 and 9 a thin pane, `illum 5` or
 //! `Pr` a coated plastic, anything else Phong), and the keys read into that type.
 
-use super::build::Builder;
 use super::diag::DocPath;
+use super::load::Builder;
 use crate::bsdf::ConductorFresnel;
 use crate::material::conductor::Conductor;
 use crate::material::dielectric::Dielectric;

@@ -1,5 +1,5 @@
 //! The scene file, one to one: serde types for TOML and JSON. Every table rejects keys it
-//! does not know. Defaults live here, checks of values live in `build`. docs/scene-format.md
+//! does not know. Defaults live here, checks of values live in `load`. docs/scene-format.md
 //! documents every key. The same types give the scene's JSON Schema ([`schema`]): field docs
 //! become its descriptions, serde defaults its defaults (shown where the default's type is
 //! `Serialize`, which is why a few of these derive it).

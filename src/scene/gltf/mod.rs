@@ -4,8 +4,8 @@
 mod material;
 mod placed;
 
-use super::build::Builder;
 use super::diag::DocPath;
+use super::load::Builder;
 use super::meshes::{LoadedMesh, Palette};
 use crate::math::Transform;
 use crate::mesh_file::gltf::{self, PbrMaterial};

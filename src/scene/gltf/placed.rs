@@ -8,10 +8,10 @@ use crate::camera::Projection;
 use crate::light::{Falloff, Light};
 use crate::math::{Color, Transform, Vec3A};
 use crate::mesh_file::gltf::{self, GltfLightKind};
-use crate::scene::build::Builder;
-use crate::scene::build::camera::Placement;
 use crate::scene::diag::{DocPath, name_help};
 use crate::scene::format::{CameraDef, CameraKind, MeshObjectDef};
+use crate::scene::load::Builder;
+use crate::scene::load::camera::Placement;
 
 /// Lumens per watt: glTF's photometric units to snell's.
 const EFFICACY: f32 = 683.0;
