@@ -20,10 +20,7 @@ mod tiles;
 pub use crate::film::Region;
 pub use crate::film::TILE;
 pub use pass::{PassError, PassStats, render_pass, render_pass_to};
-pub use pixel::{
-    add_pixel, add_samples, add_stratified, camera_ray, for_each_sample, start_sample,
-    whitted_lens_sample,
-};
+pub use pixel::{PixelJob, camera_ray, for_each_sample, start_sample, whitted_lens_sample};
 pub(crate) use tiles::for_each_tile;
 
 /// Why a render could not run.
@@ -196,23 +193,18 @@ pub fn render_with(
         film.tile_mut(i).copy_from_slice(tile);
     }
     let camera = scene.camera.raster(s.width, s.height);
+    let job = PixelJob {
+        scene,
+        integrator,
+        camera: &camera,
+    };
     let tiles = for_each_tile(
         &mut film,
         options,
         |i| earlier.contains_key(&i),
         |x, y, color, (rays, bad): &mut (RayStats, BadSamples)| {
             let mut pixel = FilmPixel::default();
-            add_pixel(
-                scene,
-                integrator,
-                &camera,
-                x,
-                y,
-                0..s.spp,
-                &mut pixel,
-                rays,
-                bad,
-            );
+            job.add_pixel(x, y, 0..s.spp, &mut pixel, rays, bad);
             *color = pixel.value();
         },
         |i, tile| {

@@ -4,7 +4,7 @@
 //! gives, at any thread count.
 
 use super::tiles::for_each_tile;
-use super::{BadSamples, RenderError, RenderOptions, TilesDone, add_pixel};
+use super::{BadSamples, PixelJob, RenderError, RenderOptions, TilesDone};
 use crate::film::{Film, FilmPixel};
 use crate::integrator::{Integrator, RayStats};
 use crate::scene::Scene;
@@ -96,13 +96,18 @@ fn pass(
     }
     let grid = film.grid();
     let camera = scene.camera.raster(s.width, s.height);
+    let job = PixelJob {
+        scene,
+        integrator,
+        camera: &camera,
+    };
     let tiles = for_each_tile(
         film,
         options,
         |_| false,
         |x, y, pixel, (rays, bad): &mut (RayStats, BadSamples)| {
             let samples = range(pixel);
-            add_pixel(scene, integrator, &camera, x, y, samples, pixel, rays, bad);
+            job.add_pixel(x, y, samples, pixel, rays, bad);
         },
         |_, _| {},
     )?;

@@ -1,7 +1,7 @@
 //! A pixel's samples: where each is placed on the film, and how its colour is added to the
 //! pixel's sums. Whitted's are jittered in an n x n grid fixed by the sample count, all
-//! taken at once ([`add_stratified`]); a sampler's integrator takes any of them by index
-//! ([`add_samples`]), so that passes can add more later.
+//! taken at once ([`PixelJob::add_stratified`]); a sampler's integrator takes any of them
+//! by index ([`PixelJob::add_samples`]), so that passes can add more later.
 
 use super::{BadSample, BadSamples};
 use crate::camera::RasterCamera;
@@ -12,27 +12,142 @@ use crate::sampler::Sampler;
 use crate::scene::{RenderSettings, Scene};
 use std::ops::Range;
 
-/// Adds samples `samples` of pixel `(x, y)` to `pixel`, its rays from `camera` (the
-/// scene's, set up for the image's size once per render): by index for an integrator that
-/// takes a sampler, or all of Whitted's strata (whose grid the sample count fixes, so they
-/// are added all at once whatever `samples` says).
-#[allow(clippy::too_many_arguments)]
-#[inline]
-pub fn add_pixel(
-    scene: &Scene,
-    integrator: &dyn Integrator,
-    camera: &RasterCamera,
-    x: u32,
-    y: u32,
-    samples: Range<u32>,
-    pixel: &mut FilmPixel,
-    rays: &mut RayStats,
-    bad: &mut BadSamples,
-) {
-    if integrator.uses_sampler() {
-        add_samples(scene, integrator, camera, x, y, samples, pixel, rays, bad);
-    } else {
-        add_stratified(scene, integrator, camera, x, y, pixel, rays, bad);
+/// What stays the same for every pixel of a render: the scene, its integrator, and the
+/// scene's camera set up for the image's size. Held together so that each pixel's call
+/// names only what is its own: where it is, which samples, and the sums it adds to.
+#[derive(Clone, Copy)]
+pub struct PixelJob<'a> {
+    /// The scene rendered.
+    pub scene: &'a Scene,
+    /// The integrator that traces each sample.
+    pub integrator: &'a dyn Integrator,
+    /// The scene's camera for the image's size (set up once per render).
+    pub camera: &'a RasterCamera,
+}
+
+impl PixelJob<'_> {
+    /// Adds samples `samples` of pixel `(x, y)` to `pixel`: by index for an integrator that
+    /// takes a sampler, or all of Whitted's strata (whose grid the sample count fixes, so
+    /// they are added all at once whatever `samples` says).
+    #[inline]
+    pub fn add_pixel(
+        &self,
+        x: u32,
+        y: u32,
+        samples: Range<u32>,
+        pixel: &mut FilmPixel,
+        rays: &mut RayStats,
+        bad: &mut BadSamples,
+    ) {
+        if self.integrator.uses_sampler() {
+            self.add_samples(x, y, samples, pixel, rays, bad);
+        } else {
+            self.add_stratified(x, y, pixel, rays, bad);
+        }
+    }
+
+    /// Adds every sample of one pixel (see [`for_each_sample`]) to `pixel`, with the sign
+    /// of its filter weight.
+    pub fn add_stratified(
+        &self,
+        x: u32,
+        y: u32,
+        pixel: &mut FilmPixel,
+        rays: &mut RayStats,
+        bad: &mut BadSamples,
+    ) {
+        let (scene, integrator, camera) = (self.scene, self.integrator, self.camera);
+        let s = &scene.settings;
+        let (mut sum, mut weight, mut unsigned, mut sum_sq) =
+            (Color::ZERO, 0.0f32, Color::ZERO, 0.0f32);
+        let mut colors = [Color::ZERO; CAMERA_BATCH];
+        let mut trace = |batch: &[Ray], signs: &[f32]| {
+            let colors = &mut colors[..batch.len()];
+            integrator.radiance_batch(scene, batch, colors, rays);
+            // The sums in locals for the batch, not through the closure's references, so
+            // that they stay in registers across the loop.
+            let (mut s, mut w, mut u, mut q) = (sum, weight, unsigned, sum_sq);
+            for ((ray, sign), &c) in batch.iter().zip(signs).zip(colors.iter()) {
+                let Some(c) = checked(scene, c, ray, x, y, bad) else {
+                    continue;
+                };
+                s += c * *sign;
+                w += sign;
+                u += c;
+                let l = crate::math::luminance(c);
+                q += l * l;
+            }
+            (sum, weight, unsigned, sum_sq) = (s, w, u, q);
+        };
+        // The camera rays of several samples are made before any is traced, so that their
+        // square roots and divisions overlap instead of each waiting behind the previous
+        // sample's whole tree of rays, and handed to the integrator together, which finds
+        // their first hits as packets. The order of the samples is unchanged.
+        let mut batch = [Ray::new(Vec3A::ZERO, Vec3A::Z); CAMERA_BATCH];
+        let mut film = [(0.0f32, 0.0f32, 0u32); CAMERA_BATCH];
+        let mut signs = [0.0f32; CAMERA_BATCH];
+        let mut len = 0;
+        // A batch's film positions first, then its rays in a loop of their own: making each
+        // ray as its sample was drawn interleaved the filter's table lookups with the ray
+        // stores (3.8 % of the seed scene's time, with the changes to `for_each_sample`).
+        let make = |film: &[(f32, f32, u32)], batch: &mut [Ray]| {
+            if camera.has_lens() {
+                for (r, &(px, py, i)) in batch.iter_mut().zip(film) {
+                    *r = camera.ray_lens(px, py, whitted_lens_sample(s, x, y, i));
+                }
+            } else {
+                for (r, &(px, py, _)) in batch.iter_mut().zip(film) {
+                    *r = camera.ray(px, py);
+                }
+            }
+        };
+        let mut index = 0;
+        for_each_sample(s, x, y, |px, py, sign| {
+            film[len] = (px, py, index);
+            index += 1;
+            signs[len] = sign;
+            len += 1;
+            if len == CAMERA_BATCH {
+                make(&film, &mut batch);
+                trace(&batch, &signs);
+                len = 0;
+            }
+        });
+        make(&film[..len], &mut batch[..len]);
+        trace(&batch[..len], &signs[..len]);
+        pixel.add_sums(sum, weight, unsigned, sum_sq, s.spp);
+    }
+
+    /// Adds samples `samples` (by index) of pixel `(x, y)` to `pixel`, for an integrator
+    /// that takes its numbers from a [`Sampler`]: each placed on the film by its sampler's
+    /// first two numbers through the filter's distribution. Sample `k` is the same
+    /// whichever pass adds it, and the sums are added in index order, so passes `0..a` then
+    /// `a..b` leave the pixel as `0..b` at once does, to the bit.
+    pub fn add_samples(
+        &self,
+        x: u32,
+        y: u32,
+        samples: Range<u32>,
+        pixel: &mut FilmPixel,
+        rays: &mut RayStats,
+        bad: &mut BadSamples,
+    ) {
+        let (scene, integrator, camera) = (self.scene, self.integrator, self.camera);
+        let s = &scene.settings;
+        let mut sampler = Sampler::new(s.integrator.sampler, s.seed);
+        let signed = s.filter.has_negative_lobes();
+        for index in samples {
+            let (px, py, filter_sign) = start_sample(s, &mut sampler, x, y, index);
+            let sign = if signed { filter_sign } else { 1.0 };
+            let ray = camera_ray(camera, &mut sampler, px, py);
+            let c = integrator.radiance_sampled(scene, &ray, &mut sampler, rays);
+            match checked(scene, c, &ray, x, y, bad) {
+                Some(c) => pixel.add(c, sign),
+                // Counted among the pixel's samples (passes take each index once), but not
+                // in its value.
+                None => pixel.add_sums(Color::ZERO, 0.0, Color::ZERO, 0.0, 1),
+            }
+        }
     }
 }
 
@@ -97,82 +212,8 @@ pub fn camera_ray(camera: &RasterCamera, sampler: &mut Sampler, px: f32, py: f32
     }
 }
 
-/// Camera rays made at once by [`add_stratified`] before they are traced.
+/// Camera rays made at once by [`PixelJob::add_stratified`] before they are traced.
 const CAMERA_BATCH: usize = 16;
-
-/// Adds every sample of one pixel (see [`for_each_sample`]) to `pixel`, with the sign of
-/// its filter weight.
-#[allow(clippy::too_many_arguments)]
-pub fn add_stratified(
-    scene: &Scene,
-    integrator: &dyn Integrator,
-    camera: &RasterCamera,
-    x: u32,
-    y: u32,
-    pixel: &mut FilmPixel,
-    rays: &mut RayStats,
-    bad: &mut BadSamples,
-) {
-    let s = &scene.settings;
-    let (mut sum, mut weight, mut unsigned, mut sum_sq) =
-        (Color::ZERO, 0.0f32, Color::ZERO, 0.0f32);
-    let mut colors = [Color::ZERO; CAMERA_BATCH];
-    let mut trace = |batch: &[Ray], signs: &[f32]| {
-        let colors = &mut colors[..batch.len()];
-        integrator.radiance_batch(scene, batch, colors, rays);
-        // The sums in locals for the batch, not through the closure's references, so that
-        // they stay in registers across the loop.
-        let (mut s, mut w, mut u, mut q) = (sum, weight, unsigned, sum_sq);
-        for ((ray, sign), &c) in batch.iter().zip(signs).zip(colors.iter()) {
-            let Some(c) = checked(scene, c, ray, x, y, bad) else {
-                continue;
-            };
-            s += c * *sign;
-            w += sign;
-            u += c;
-            let l = crate::math::luminance(c);
-            q += l * l;
-        }
-        (sum, weight, unsigned, sum_sq) = (s, w, u, q);
-    };
-    // The camera rays of several samples are made before any is traced, so that their
-    // square roots and divisions overlap instead of each waiting behind the previous
-    // sample's whole tree of rays, and handed to the integrator together, which finds their
-    // first hits as packets. The order of the samples is unchanged.
-    let mut batch = [Ray::new(Vec3A::ZERO, Vec3A::Z); CAMERA_BATCH];
-    let mut film = [(0.0f32, 0.0f32, 0u32); CAMERA_BATCH];
-    let mut signs = [0.0f32; CAMERA_BATCH];
-    let mut len = 0;
-    // A batch's film positions first, then its rays in a loop of their own: making each ray
-    // as its sample was drawn interleaved the filter's table lookups with the ray stores
-    // (3.8 % of the seed scene's time, with the changes to `for_each_sample`).
-    let make = |film: &[(f32, f32, u32)], batch: &mut [Ray]| {
-        if camera.has_lens() {
-            for (r, &(px, py, i)) in batch.iter_mut().zip(film) {
-                *r = camera.ray_lens(px, py, whitted_lens_sample(s, x, y, i));
-            }
-        } else {
-            for (r, &(px, py, _)) in batch.iter_mut().zip(film) {
-                *r = camera.ray(px, py);
-            }
-        }
-    };
-    let mut index = 0;
-    for_each_sample(s, x, y, |px, py, sign| {
-        film[len] = (px, py, index);
-        index += 1;
-        signs[len] = sign;
-        len += 1;
-        if len == CAMERA_BATCH {
-            make(&film, &mut batch);
-            trace(&batch, &signs);
-            len = 0;
-        }
-    });
-    make(&film[..len], &mut batch[..len]);
-    trace(&batch[..len], &signs[..len]);
-    pixel.add_sums(sum, weight, unsigned, sum_sq, s.spp);
-}
 
 /// `c`, or `None` where it is NaN or infinite: a non-finite sample would poison the whole
 /// pixel, so it is left out of the pixel's value (the pixel is the mean of its other
@@ -223,40 +264,6 @@ pub fn start_sample(
     )
 }
 
-/// Adds samples `samples` (by index) of pixel `(x, y)` to `pixel`, for an integrator that
-/// takes its numbers from a [`Sampler`]: each placed on the film by its sampler's first two
-/// numbers through the filter's distribution. Sample `k` is the same whichever pass adds
-/// it, and the sums are added in index order, so passes `0..a` then `a..b` leave the pixel
-/// as `0..b` at once does, to the bit.
-#[allow(clippy::too_many_arguments)]
-pub fn add_samples(
-    scene: &Scene,
-    integrator: &dyn Integrator,
-    camera: &RasterCamera,
-    x: u32,
-    y: u32,
-    samples: Range<u32>,
-    pixel: &mut FilmPixel,
-    rays: &mut RayStats,
-    bad: &mut BadSamples,
-) {
-    let s = &scene.settings;
-    let mut sampler = Sampler::new(s.integrator.sampler, s.seed);
-    let signed = s.filter.has_negative_lobes();
-    for index in samples {
-        let (px, py, filter_sign) = start_sample(s, &mut sampler, x, y, index);
-        let sign = if signed { filter_sign } else { 1.0 };
-        let ray = camera_ray(camera, &mut sampler, px, py);
-        let c = integrator.radiance_sampled(scene, &ray, &mut sampler, rays);
-        match checked(scene, c, &ray, x, y, bad) {
-            Some(c) => pixel.add(c, sign),
-            // Counted among the pixel's samples (passes take each index once), but not in
-            // its value.
-            None => pixel.add_sums(Color::ZERO, 0.0, Color::ZERO, 0.0, 1),
-        }
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -287,16 +294,12 @@ mod tests {
             assert_eq!(count, 25);
             let mut rays = RayStats::default();
             let mut pixel = FilmPixel::default();
-            add_stratified(
-                &scene,
-                &Whitted,
-                &scene.camera.raster(8, 8),
-                x,
-                y,
-                &mut pixel,
-                &mut rays,
-                &mut BadSamples::default(),
-            );
+            let job = PixelJob {
+                scene: &scene,
+                integrator: &Whitted,
+                camera: &scene.camera.raster(8, 8),
+            };
+            job.add_stratified(x, y, &mut pixel, &mut rays, &mut BadSamples::default());
             assert_eq!(rays.camera, 25, "pixel ({x}, {y})");
             assert_eq!(pixel.samples, 25);
             assert_eq!(

@@ -12,6 +12,9 @@ mod limits;
 mod load;
 mod meshes;
 mod mtl;
+mod settings;
+mod stats;
+mod summary;
 
 pub use assets::AssetCache;
 pub use detail::UvFrame;
@@ -22,11 +25,12 @@ pub use limits::{Limits, MemoryEstimate, available_memory, memory_estimate};
 pub use load::{
     Animation, MAX_FRAMES, MAX_MAGNITUDE, load, load_frame, load_str, load_str_frame, load_with,
 };
+pub use settings::{Fog, IntegratorSettings, RenderSettings};
+pub use stats::{BuildStats, MeshStats};
 
 use crate::accel::Bvh;
 pub use crate::accel::Skip;
 use crate::camera::Camera;
-use crate::film::Filter;
 use crate::geometry::{Leaving, Shape, ShapeHit};
 use crate::light::{AreaLight, Light, LightSampler};
 use crate::material::Material;
@@ -34,185 +38,6 @@ use crate::math::{Aabb, Color, LANES, Ray, Transform, Vec3A};
 use crate::texture::{Texture, TexturePoint};
 use std::collections::BTreeMap;
 use std::path::PathBuf;
-
-/// Render settings from the scene's `[image]` table (the command line may override them).
-#[derive(Clone, Debug, PartialEq)]
-pub struct RenderSettings {
-    /// Image width in pixels.
-    pub width: u32,
-    /// Image height in pixels.
-    pub height: u32,
-    /// Samples per pixel, a square number.
-    pub spp: u32,
-    /// Longest chain of rays, the camera ray included.
-    pub max_depth: u32,
-    /// Seed of the sample jitter.
-    pub seed: u64,
-    /// Reconstruction filter.
-    pub filter: Filter,
-    /// The integrator and its settings.
-    pub integrator: IntegratorSettings,
-    /// Exposure and tone curve of 8-bit outputs.
-    pub tone: crate::output::tone::Tone,
-    /// Whether camera rays carry differentials, so textures are filtered over each
-    /// pixel's footprint.
-    pub filter_textures: bool,
-}
-
-/// Which integrator renders, and the path tracer's settings (`[integrator]`).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct IntegratorSettings {
-    /// Whitted or path.
-    pub kind: IntegratorKind,
-    /// The path tracer's sampler.
-    pub sampler: crate::sampler::SamplerKind,
-    /// Depth (segments, the camera ray 1) from which Russian roulette may end a path.
-    pub rr_depth: u32,
-    /// The most a sample may add to a pixel, per channel; `None`: no clamp.
-    pub clamp: Option<f32>,
-}
-
-impl Default for IntegratorSettings {
-    fn default() -> Self {
-        IntegratorSettings {
-            kind: IntegratorKind::Whitted,
-            sampler: crate::sampler::SamplerKind::Sobol,
-            rr_depth: 5,
-            clamp: None,
-        }
-    }
-}
-
-impl RenderSettings {
-    /// Largest image side accepted (pixel coordinates must stay exact in an `f32`).
-    pub const MAX_SIDE: u32 = 65_536;
-
-    /// Checks an image side.
-    pub fn check_side(what: &str, v: u32) -> Result<(), String> {
-        if v == 0 || v > Self::MAX_SIDE {
-            Err(format!(
-                "{what} must be between 1 and {} pixels, not {v}",
-                Self::MAX_SIDE
-            ))
-        } else {
-            Ok(())
-        }
-    }
-}
-
-/// Fog over distance travelled outside solids.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Fog {
-    /// Fog fraction rises linearly from 0 at `start` to 1 at `end`.
-    Linear {
-        /// Colour of full fog.
-        color: Color,
-        /// Distance where it starts.
-        start: f32,
-        /// Distance where it is complete.
-        end: f32,
-    },
-    /// Fog fraction `1 - exp(-density * (distance - start))` beyond `start`.
-    Exponential {
-        /// Colour of full fog.
-        color: Color,
-        /// Distance where it starts.
-        start: f32,
-        /// Per scene unit.
-        density: f32,
-    },
-}
-
-impl Fog {
-    /// Blends `c`, seen from `distance` away, toward the fog colour.
-    #[inline]
-    pub fn apply(&self, c: Color, distance: f32) -> Color {
-        let (fog, f) = match *self {
-            Fog::Linear { color, start, end } => {
-                (color, ((distance - start) / (end - start)).clamp(0.0, 1.0))
-            }
-            Fog::Exponential {
-                color,
-                start,
-                density,
-            } => (color, 1.0 - (-density * (distance - start).max(0.0)).exp()),
-        };
-        c.lerp(fog, f)
-    }
-}
-
-/// What building a scene cost, for `snell render --stats`.
-#[derive(Clone, Debug, Default, PartialEq)]
-pub struct BuildStats {
-    /// Time reading mesh files.
-    pub mesh_load_time: std::time::Duration,
-    /// Time building the meshes' BVHs.
-    pub mesh_bvh_time: std::time::Duration,
-    /// Time building the BVH over the objects.
-    pub object_bvh_time: std::time::Duration,
-    /// Objects in the scene (each placement of a mesh counts once).
-    pub objects: usize,
-    /// Distinct meshes (shared by their placements).
-    pub meshes: usize,
-    /// Triangles in the distinct meshes.
-    pub unique_triangles: usize,
-    /// Triangles in the scene, every placement counted.
-    pub instanced_triangles: usize,
-    /// Bytes of all BVHs: the meshes' and the objects'.
-    pub bvh_bytes: usize,
-    /// Bytes of the distinct meshes' triangles, normals and uvs.
-    pub mesh_bytes: usize,
-    /// Each distinct mesh, in the order first placed.
-    pub per_mesh: Vec<MeshStats>,
-}
-
-/// One distinct mesh of a scene: its file, triangles and placements.
-#[derive(Clone, Debug, Default, PartialEq, Eq)]
-pub struct MeshStats {
-    /// The file as the scene names it.
-    pub file: String,
-    /// What the mesh is within its file: a glTF mesh's name and the nodes that place it
-    /// (`None` for OBJ and PLY).
-    pub label: Option<String>,
-    /// The images its file's materials read (a glTF file's; 0 for OBJ and PLY).
-    pub file_images: usize,
-    /// Triangles loaded from the file (degenerate ones dropped).
-    pub triangles: usize,
-    /// Objects that place it.
-    pub placements: usize,
-}
-
-impl BuildStats {
-    /// Counts objects, meshes and triangles.
-    /// `file_of` names the file a mesh was read from (its `file`, `label` and
-    /// `file_images`).
-    pub(crate) fn record_objects(
-        &mut self,
-        objects: &[Object],
-        file_of: impl Fn(&std::sync::Arc<crate::geometry::Mesh>) -> MeshStats,
-    ) {
-        let mut seen = std::collections::HashMap::new();
-        self.objects = objects.len();
-        for o in objects {
-            if let Shape::Mesh(m) = &o.shape {
-                self.instanced_triangles += m.triangle_count();
-                let i = *seen.entry(std::sync::Arc::as_ptr(m)).or_insert_with(|| {
-                    self.meshes += 1;
-                    self.unique_triangles += m.triangle_count();
-                    self.bvh_bytes += m.bvh_bytes();
-                    self.mesh_bytes += m.geometry_bytes();
-                    self.per_mesh.push(MeshStats {
-                        triangles: m.triangle_count(),
-                        placements: 0,
-                        ..file_of(m)
-                    });
-                    self.per_mesh.len() - 1
-                });
-                self.per_mesh[i].placements += 1;
-            }
-        }
-    }
-}
 
 /// A shape placed in the scene with its material.
 #[derive(Clone, Debug)]
@@ -630,142 +455,6 @@ impl Scene {
     #[inline]
     pub fn material_at(&self, hit: &Hit) -> &Material {
         &self.materials[hit.material]
-    }
-
-    /// What its integrator cannot light: Whitted lights surfaces by point, spot and
-    /// directional lights only (an environment shows, and emitting surfaces glow, but
-    /// neither lights anything); the path tracer finds no light in a scene without lights,
-    /// emitting surfaces, environment or background.
-    pub fn lighting_warning(&self) -> Option<String> {
-        if !self.lights.is_empty() {
-            return None;
-        }
-        let emits = self.materials.iter().any(|m| m.emission.is_some());
-        match self.settings.integrator.kind {
-            IntegratorKind::Whitted => {
-                let others = match (self.environment.is_some(), emits) {
-                    (true, true) => " (Whitted shows the environment and emitting surfaces but lights nothing by them; the path tracer does: --integrator path)",
-                    (true, false) => " (Whitted shows the environment but does not light with it; the path tracer does: --integrator path)",
-                    (false, true) => " (Whitted shows emitting surfaces but lights nothing by them; the path tracer does: --integrator path)",
-                    (false, false) => "",
-                };
-                Some(format!(
-                    "the scene has no lights Whitted uses: only ambient light will show{others}"
-                ))
-            }
-            IntegratorKind::Path => (!emits
-                && self.background == Color::ZERO
-                && self.environment.is_none())
-            .then(|| {
-                "the scene has no lights and a black background: the path tracer's image will be black"
-                    .into()
-            }),
-        }
-    }
-
-    /// [`Scene::lighting_warning`] again after its settings changed (an integrator given on
-    /// the command line): `before` was the warning for the settings it was built with.
-    pub fn recheck_lighting(&mut self, before: Option<String>) {
-        let after = self.lighting_warning();
-        if before != after {
-            if let Some(b) = before {
-                self.warnings.retain(|w| *w != b);
-            }
-            self.warnings.extend(after);
-        }
-    }
-
-    /// A short human summary: counts of objects by type, lights, textures, materials.
-    pub fn summary(&self) -> String {
-        let mut kinds: BTreeMap<&str, usize> = BTreeMap::new();
-        for o in &self.objects {
-            *kinds.entry(o.shape.kind()).or_default() += 1;
-        }
-        let kinds: Vec<String> = kinds.iter().map(|(k, n)| format!("{n} {k}")).collect();
-        let mut lights: BTreeMap<&str, usize> = BTreeMap::new();
-        for l in &self.lights {
-            *lights.entry(l.kind_name()).or_default() += 1;
-        }
-        if !self.area_lights.is_empty() {
-            lights.insert("area", self.area_lights.len());
-        }
-        let count = self.lights.len() + self.area_lights.len();
-        let lights = if count == 0 {
-            "none".to_string()
-        } else {
-            let kinds: Vec<String> = lights.iter().map(|(k, n)| format!("{n} {k}")).collect();
-            format!("{count} ({})", kinds.join(", "))
-        };
-        let s = &self.settings;
-        // Lines for an animation and for meshes, where the scene has them.
-        let mut extra = String::new();
-        let st = &self.stats;
-        if let Some(env) = &self.environment {
-            extra += &format!(
-                "\nenvironment: {}; {:.0} % of light samples",
-                env.describe(),
-                100.0 * self.light_sampler.environment_probability()
-            );
-        }
-        if let Some(a) = self.animation {
-            extra += &format!(
-                "\nanimation: {} frames at {} frames a second ({:.2} s)",
-                a.frames,
-                a.fps,
-                a.frames as f32 / a.fps
-            );
-        }
-        if st.meshes > 0 {
-            extra += &format!(
-                "\nmeshes:    {} ({} triangles loaded, {} placed)",
-                st.meshes, st.unique_triangles, st.instanced_triangles
-            );
-            for m in &st.per_mesh {
-                // A glTF file's meshes by name, with the nodes that place them.
-                let part = m
-                    .label
-                    .as_ref()
-                    .map_or_else(String::new, |l| format!(": {l}"));
-                extra += &format!(
-                    "\n  {}{part}: {} triangles, placed {} time{} ({} triangles)",
-                    m.file,
-                    m.triangles,
-                    m.placements,
-                    if m.placements == 1 { "" } else { "s" },
-                    m.triangles * m.placements
-                );
-            }
-        }
-        // The named textures, then the images each glTF file's materials read.
-        let mut files: Vec<(&str, usize)> = vec![];
-        for m in st.per_mesh.iter().filter(|m| m.file_images > 0) {
-            if !files.iter().any(|(f, _)| *f == m.file) {
-                files.push((&m.file, m.file_images));
-            }
-        }
-        let count = self.texture_names.len() + files.iter().map(|(_, n)| n).sum::<usize>();
-        let mut names: Vec<String> = self.texture_names.keys().cloned().collect();
-        names.extend(
-            files
-                .iter()
-                .map(|(f, n)| format!("{n} image{} of {f}", if *n == 1 { "" } else { "s" })),
-        );
-        let textures = if names.is_empty() {
-            count.to_string()
-        } else {
-            format!("{count} ({})", names.join(", "))
-        };
-        format!(
-            "image:     {} x {}, {} spp, max depth {}, seed {}\nobjects:   {} ({})\nlights:    {lights}\nmaterials: {}\ntextures:  {textures}{extra}",
-            s.width,
-            s.height,
-            s.spp,
-            s.max_depth,
-            s.seed,
-            self.objects.len(),
-            kinds.join(", "),
-            self.material_names.len(),
-        )
     }
 }
 
