@@ -4,9 +4,9 @@
 
 pub(crate) mod wide;
 
+use crate::geometry::Object;
 use crate::geometry::{Shape, ShapeHit};
 use crate::math::{Aabb, LANES, Ray, RayLanes, Vec3A};
-use crate::scene::Object;
 use glam::Vec4;
 use wide::{MESH_ROOT_FIRST, NodeRay, WideNode};
 

@@ -11,7 +11,6 @@
 use super::{Integrator, RayStats, Whitted};
 use crate::film::{Film, Image};
 use crate::math::{Color, Vec2, Vec3A};
-use crate::render::{RenderError, RenderOptions, for_each_tile};
 use crate::scene::{Scene, Skip};
 use crate::texture::srgb_to_linear;
 
@@ -102,7 +101,7 @@ pub struct AovBuffers {
 
 /// What one pixel's centre ray finds.
 #[derive(Clone, Copy, Debug, bytemuck::Zeroable)]
-struct Sample {
+pub(crate) struct AovSample {
     normal: Vec3A,
     uv: Vec2,
     depth: f32,
@@ -112,41 +111,27 @@ struct Sample {
     bounces: u32,
 }
 
-/// Traces the ray through the centre of every pixel and records every view, through the
-/// render loop every render takes.
-pub fn render_aovs(scene: &Scene, threads: Option<usize>) -> Result<AovBuffers, RenderError> {
-    let (w, h) = (scene.settings.width, scene.settings.height);
-    let mut film: Film<Sample> = Film::new(w, h);
-    let options = RenderOptions {
-        threads,
-        progress: &|_| {},
-        cancel: None,
-        region: None,
-    };
-    for_each_tile(
-        &mut film,
-        &options,
-        |_| false,
-        |x, y, pixel, _: &mut ()| *pixel = sample(scene, x, y),
-        |_, _| {},
-    )?;
-    let all = crate::render::thread_pool(threads)?.install(|| film.rows(|s| *s));
-    Ok(AovBuffers {
-        width: w,
-        height: h,
-        normal: all.iter().map(|s| s.normal).collect(),
-        uv: all.iter().map(|s| s.uv).collect(),
-        depth: all.iter().map(|s| s.depth).collect(),
-        albedo: all.iter().map(|s| s.albedo).collect(),
-        object: all.iter().map(|s| s.object).collect(),
-        material: all.iter().map(|s| s.material).collect(),
-        bounces: all.iter().map(|s| s.bounces).collect(),
-        variance: vec![f32::NAN; all.len()],
-        luminance: vec![0.0; all.len()],
-    })
+impl AovBuffers {
+    /// The buffers of `w` x `h` pixels' samples, row by row.
+    pub(crate) fn from_samples(w: u32, h: u32, all: &[AovSample]) -> Self {
+        AovBuffers {
+            width: w,
+            height: h,
+            normal: all.iter().map(|s| s.normal).collect(),
+            uv: all.iter().map(|s| s.uv).collect(),
+            depth: all.iter().map(|s| s.depth).collect(),
+            albedo: all.iter().map(|s| s.albedo).collect(),
+            object: all.iter().map(|s| s.object).collect(),
+            material: all.iter().map(|s| s.material).collect(),
+            bounces: all.iter().map(|s| s.bounces).collect(),
+            variance: vec![f32::NAN; all.len()],
+            luminance: vec![0.0; all.len()],
+        }
+    }
 }
 
-fn sample(scene: &Scene, x: u32, y: u32) -> Sample {
+/// What pixel `(x, y)`'s centre ray finds, for every view.
+pub(crate) fn sample(scene: &Scene, x: u32, y: u32) -> AovSample {
     let s = &scene.settings;
     let ray = scene
         .camera
@@ -156,14 +141,16 @@ fn sample(scene: &Scene, x: u32, y: u32) -> Sample {
         // The path of the pixel's sample 0, as `snell explain --integrator path` shows it,
         // from the centre: its numbers after the two that place it on the film.
         let mut sampler = crate::sampler::Sampler::new(s.integrator.sampler, s.seed);
-        crate::render::start_sample(s, &mut sampler, x, y, 0);
+        // The two numbers that place sample 0 on the film (`render::start_sample`).
+        sampler.start(x, y, 0);
+        sampler.next_2d();
         super::Path.radiance_sampled(scene, &ray, &mut sampler, &mut rays);
     } else {
         Whitted.trace(scene, &ray, 1, None, &mut rays);
     }
     let bounces = rays.deepest.saturating_sub(1);
     match scene.closest_hit_with_uv(&ray, f32::INFINITY, Skip::NONE) {
-        None => Sample {
+        None => AovSample {
             normal: Vec3A::ZERO,
             uv: Vec2::ZERO,
             depth: f32::INFINITY,
@@ -176,7 +163,7 @@ fn sample(scene: &Scene, x: u32, y: u32) -> Sample {
             let tex = hit.tex;
             scene.with_detail(&mut hit, &tex);
             let uv = scene.texture_uv(&hit);
-            Sample {
+            AovSample {
                 normal: hit.shading_normal,
                 uv,
                 depth: hit.t,

@@ -5,6 +5,7 @@
 //! does not depend on its scale), as `1 / d^2` under the path tracer.
 
 pub mod area;
+mod env_map;
 pub mod environment;
 pub mod select;
 pub mod sky;

@@ -26,6 +26,10 @@ pub use offset::offset_ray_origin;
 pub use rng::{Rng, hash_seed};
 pub use transform::Transform;
 
+/// Largest magnitude of any number a scene or a mesh file may give: its square (1e30) still
+/// fits in an `f32`, so lengths, areas and quadratics cannot overflow.
+pub const MAX_MAGNITUDE: f32 = 1e15;
+
 /// Linear RGB colour (not sRGB encoded), one `f32` per channel.
 pub type Color = Vec3A;
 

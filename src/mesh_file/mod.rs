@@ -79,7 +79,7 @@ pub struct MtlMaterial {
 pub enum MeshInputError {
     /// More materials than a triangle's `u16` slot can name.
     TooManyMaterials(usize),
-    /// A vertex beyond [`crate::scene::MAX_MAGNITUDE`].
+    /// A vertex beyond [`crate::math::MAX_MAGNITUDE`].
     VertexTooFar(crate::math::Vec3),
 }
 
@@ -115,7 +115,7 @@ impl MeshData {
         let positions: Vec<Vec3> = positions.into_iter().map(Vec3::from).collect();
         if let Some(p) = positions
             .iter()
-            .find(|p| p.abs().max_element() > crate::scene::MAX_MAGNITUDE)
+            .find(|p| p.abs().max_element() > crate::math::MAX_MAGNITUDE)
         {
             return Err(MeshInputError::VertexTooFar(*p));
         }

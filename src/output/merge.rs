@@ -47,15 +47,11 @@ fn parse_tone(s: &str) -> Option<Tone> {
     })
 }
 
-/// The largest whole image a region file may be of (as many pixels as a render may have).
-fn max_pixels() -> u64 {
-    crate::scene::Limits::default().max_pixels
-}
-
 /// Reads a region file. Its header is checked first (one part, a whole image of at most
-/// as many pixels as a render may have, a few channels), so a hostile file cannot make the
-/// reader allocate without bound; a reader that panics on a corrupt file is an error too.
-pub fn read_region(path: &Path) -> Result<RegionFile, String> {
+/// `max_pixels`, as many as a render may have, and a few channels), so a hostile file cannot
+/// make the reader allocate without bound; a reader that panics on a corrupt file is an
+/// error too.
+pub fn read_region(path: &Path, max_pixels: u64) -> Result<RegionFile, String> {
     let shown = path.display();
     let meta = exr::meta::MetaData::read_from_file(path, false)
         .map_err(|e| format!("{shown}: not an EXR snell can read: {e}"))?;
@@ -67,7 +63,7 @@ pub fn read_region(path: &Path) -> Result<RegionFile, String> {
     };
     let display = header.shared_attributes.display_window;
     let full = display.size.0 as u64 * display.size.1 as u64;
-    if full > max_pixels() || header.channels.list.len() > 8 || header.deep {
+    if full > max_pixels || header.channels.list.len() > 8 || header.deep {
         return Err(format!(
             "{shown}: an image of {} x {} with {} channels is not a region file snell writes",
             display.size.0,

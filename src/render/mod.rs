@@ -11,6 +11,7 @@ use std::collections::BTreeMap;
 use std::sync::Mutex;
 use std::sync::atomic::AtomicBool;
 
+mod aov;
 pub mod estimate;
 pub mod pass;
 mod pixel;
@@ -19,6 +20,7 @@ mod tiles;
 
 pub use crate::film::Region;
 pub use crate::film::TILE;
+pub use aov::render_aovs;
 pub use pass::{PassError, PassStats, render_pass, render_pass_to};
 pub use pixel::{PixelJob, camera_ray, for_each_sample, start_sample, whitted_lens_sample};
 pub(crate) use tiles::for_each_tile;

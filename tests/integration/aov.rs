@@ -4,7 +4,8 @@
 //! line must write them as PNGs or as layers of one EXR.
 
 use super::{repo, scratch};
-use snell::integrator::aov::{Aov, AovBuffers, render_aovs};
+use snell::integrator::aov::{Aov, AovBuffers};
+use snell::render::render_aovs;
 use snell::scene::load;
 use std::process::Command;
 

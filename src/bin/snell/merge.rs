@@ -46,7 +46,7 @@ pub(crate) fn merge_command(args: MergeArgs) -> ExitCode {
     };
     let mut files = Vec::with_capacity(args.parts.len());
     for p in &args.parts {
-        match read_region(p) {
+        match read_region(p, snell::scene::Limits::default().max_pixels) {
             Ok(f) => files.push(f),
             Err(e) => {
                 eprintln!("error: {e}");

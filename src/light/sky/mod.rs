@@ -13,7 +13,7 @@ pub mod preetham;
 pub mod solar_position;
 pub mod sun;
 
-use super::environment::{EnvironmentMap, EnvironmentSample, direction_of};
+use super::env_map::{EnvironmentMap, EnvironmentSample, direction_of};
 use crate::math::spectrum::xyz_to_rgb;
 use crate::math::{Color, Vec2, Vec3A, luminance};
 use crate::texture::{ColorSpace, ImageData};

@@ -10,8 +10,8 @@ use super::{BuildStats, Limits, Scene};
 use parse::parse;
 use std::path::{Path, PathBuf};
 
+pub use crate::math::MAX_MAGNITUDE;
 pub use animation::{Animation, MAX_FRAMES};
-pub use values::MAX_MAGNITUDE;
 mod animation;
 mod assemble;
 pub(super) mod camera;

@@ -3,13 +3,9 @@
 //! goes on and finds the file's other problems too.
 
 use super::Builder;
-use crate::math::{Color, Vec3A};
+use crate::math::{Color, MAX_MAGNITUDE, Vec3A};
 use crate::scene::diag::DocPath;
 use crate::scene::format::{ColorDef, V3};
-
-/// Largest magnitude of any number in a scene: its square (1e30) still fits in an `f32`, so
-/// lengths, areas and quadratics cannot overflow.
-pub const MAX_MAGNITUDE: f32 = 1e15;
 
 impl Builder<'_> {
     pub(super) fn finite(&mut self, x: f32, path: &DocPath) -> f32 {

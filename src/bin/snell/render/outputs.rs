@@ -5,8 +5,9 @@
 use super::Outcome;
 use crate::args::RenderArgs;
 use crate::usage_error;
-use snell::integrator::aov::{Aov, render_aovs};
+use snell::integrator::aov::Aov;
 use snell::output::{ExrLayer, OutputFormat, PendingOutput, encode_exr_layers};
+use snell::render::render_aovs;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 

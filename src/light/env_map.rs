@@ -1,0 +1,167 @@
+//! An equirectangular image as light from far away: its radiance by direction, and
+//! directions sampled in proportion to its brightness with their density. The environment
+//! (an image) and the daylight sky (an image made from the model) both use it, so it sits
+//! below both.
+//!
+//! The image's convention (docs/scene-format.md, `[environment]`): `+y` is up; the image's
+//! top row is straight up and its bottom row straight down; its centre column (`u = 0.5`)
+//! lies toward `-z`, and `u` grows toward `+x` (so the picture is seen unmirrored from
+//! inside, looking toward `-z`). `rotate` turns the image about the world's axes.
+
+use crate::math::approx;
+use crate::math::distribution2d::Distribution2d;
+use crate::math::{Color, Transform, Vec2, Vec3A, luminance};
+use crate::texture::ImageData;
+use std::f32::consts::PI;
+use std::sync::Arc;
+
+/// An equirectangular image, its placement, and the density it is sampled with.
+#[derive(Clone, Debug)]
+pub struct EnvironmentMap {
+    pub(super) image: Arc<ImageData>,
+    /// World to the image's frame and back (a rotation).
+    rotation: Transform,
+    /// Multiplies the image's values.
+    scale: Color,
+    /// Over the image's texels: the mean luminance the bilinear lookup gives over each
+    /// texel's area (positive wherever any light shows there, so light sampling reaches all
+    /// of it), times the solid angle of its row.
+    density: Distribution2d,
+    /// The radiance averaged over all directions.
+    pub(super) mean: Color,
+    /// The image's file as the scene names it, where it came from one.
+    pub file: Option<String>,
+}
+
+/// A direction toward the environment chosen for a point.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct EnvironmentSample {
+    /// Unit direction toward it, in world space.
+    pub direction: Vec3A,
+    /// Radiance arriving from there.
+    pub radiance: Color,
+    /// Density per unit solid angle.
+    pub pdf: f32,
+}
+
+/// The image coordinates `(u, v)` of a unit direction in the image's frame.
+pub(crate) fn uv_of(d: Vec3A) -> Vec2 {
+    // Fast approximations: a lookup a millionth of a radian off is the same lookup.
+    let phi = approx::atan2(d.x, -d.z);
+    let theta = approx::acos(d.y);
+    Vec2::new(0.5 + phi / (2.0 * PI), theta / PI)
+}
+
+/// The unit direction (in the image's frame) of image coordinates `(u, v)`, and the sine of
+/// its angle from straight up.
+pub(crate) fn direction_of(uv: Vec2) -> (Vec3A, f32) {
+    let (phi, theta) = ((uv.x - 0.5) * 2.0 * PI, uv.y * PI);
+    let (st, ct) = approx::sin_cos(theta);
+    let (sp, cp) = approx::sin_cos(phi);
+    (Vec3A::new(st * sp, ct, -st * cp), st)
+}
+
+impl EnvironmentMap {
+    /// The map of `image`, turned by `rotate_deg` (degrees about x, then y, then z), its
+    /// values multiplied by `scale`.
+    pub fn new(image: Arc<ImageData>, rotate_deg: Vec3A, scale: Color) -> Self {
+        let (w, h) = (image.width() as usize, image.height() as usize);
+        let lum: Vec<f32> = (0..w * h)
+            .map(|i| luminance(image.texel((i % w) as u32, (i / w) as u32) * scale))
+            .collect();
+        let mut weights = vec![0.0f32; w * h];
+        let (mut sum, mut solid) = (Color::ZERO, 0.0f64);
+        for y in 0..h {
+            let sin = (PI * (y as f32 + 0.5) / h as f32).sin();
+            for x in 0..w {
+                // The mean luminance of the bilinear lookup over this texel's area: it blends
+                // the texel with its eight neighbours, by 6/8 and 1/8 along each axis.
+                const K: [f32; 3] = [0.125, 0.75, 0.125];
+                let mut m = 0.0f32;
+                for (ky, dy) in K.iter().zip([-1i64, 0, 1]) {
+                    let yy = (y as i64 + dy).clamp(0, h as i64 - 1) as usize;
+                    for (kx, dx) in K.iter().zip([-1i64, 0, 1]) {
+                        let xx = (x as i64 + dx).rem_euclid(w as i64) as usize;
+                        m += ky * kx * lum[yy * w + xx];
+                    }
+                }
+                weights[y * w + x] = m * sin;
+                sum += image.texel(x as u32, y as u32) * (scale * sin);
+                solid += sin as f64;
+            }
+        }
+        EnvironmentMap {
+            image,
+            rotation: Transform::rotation(rotate_deg.into()),
+            scale,
+            density: Distribution2d::new(&weights, w, h),
+            mean: if solid > 0.0 {
+                sum / solid as f32
+            } else {
+                Color::ZERO
+            },
+            file: None,
+        }
+    }
+
+    /// The image coordinates of world direction `world`.
+    #[inline]
+    pub(super) fn uv(&self, world: Vec3A) -> Vec2 {
+        uv_of(self.rotation.vector_to_object(world).normalize_or_zero())
+    }
+
+    #[inline]
+    fn radiance_at(&self, uv: Vec2) -> Color {
+        self.image.sample_bilinear(
+            uv,
+            crate::texture::Wraps {
+                u: crate::texture::Wrap::Repeat,
+                v: crate::texture::Wrap::Clamp,
+            },
+        ) * self.scale
+    }
+
+    /// The density per unit solid angle of image coordinates `uv`: the texel density over
+    /// the unit square, over the `2 pi^2 sin(theta)` solid angle per unit of it.
+    #[inline]
+    pub(super) fn pdf_at(&self, uv: Vec2) -> f32 {
+        let sin = approx::sin_cos(uv.y * PI).0;
+        if sin <= 0.0 {
+            return 0.0;
+        }
+        self.density.pdf(uv) / (2.0 * PI * PI * sin)
+    }
+
+    /// Radiance from world direction `world`.
+    #[inline]
+    pub(crate) fn radiance(&self, world: Vec3A) -> Color {
+        self.radiance_at(self.uv(world))
+    }
+
+    /// Radiance from world direction `world` and the density of [`EnvironmentMap::sample`]
+    /// for it.
+    #[inline]
+    pub(crate) fn radiance_pdf(&self, world: Vec3A) -> (Color, f32) {
+        let uv = self.uv(world);
+        (self.radiance_at(uv), self.pdf_at(uv))
+    }
+
+    /// The radiance averaged over all directions.
+    pub(crate) fn mean(&self) -> Color {
+        self.mean
+    }
+
+    /// A direction in proportion to the image's brightness.
+    pub(crate) fn sample(&self, u: Vec2) -> Option<EnvironmentSample> {
+        let (uv, pdf_uv) = self.density.sample(u)?;
+        let (local, sin) = direction_of(uv);
+        if sin <= 0.0 {
+            return None;
+        }
+        Some(EnvironmentSample {
+            direction: self.rotation.vector_to_world(local).normalize_or_zero(),
+            radiance: self.radiance_at(uv),
+            pdf: pdf_uv / (2.0 * PI * PI * sin),
+        })
+    }
+}
