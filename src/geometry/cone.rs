@@ -1,3 +1,6 @@
+//! A finite cone, capped or open: its hits (a quadratic in the ray's parameter, and the
+//! base's disk), normals and uv.
+
 use super::cylinder::{BOTTOM, SIDE, cap_hit, cap_uv, disk_bounds};
 use super::{ShapeHit, Surface, in_range, solve_quadratic};
 use crate::math::{Aabb, Frame, Ray, Vec2, Vec3A};

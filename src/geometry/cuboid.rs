@@ -1,3 +1,6 @@
+//! An axis-aligned box in object space (a transform turns it): its hits by the slab test,
+//! the face hit, normals and uv.
+
 use super::{ShapeHit, Surface};
 use crate::math::{Aabb, Ray, Vec2, Vec3A};
 

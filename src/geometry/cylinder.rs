@@ -1,3 +1,6 @@
+//! A finite cylinder about any axis, capped or open: its hits (a quadratic, and the caps'
+//! disks), normals and uv; the cap helpers the cone and disk share.
+
 use super::{ShapeHit, Surface, in_range, nearer, solve_quadratic};
 use crate::math::{Aabb, Frame, Ray, Vec2, Vec3A};
 use std::f32::consts::TAU;

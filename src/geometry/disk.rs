@@ -1,3 +1,5 @@
+//! A flat disk: its hits, normal and uv, and its points sampled by area for area lights.
+
 use super::cylinder::disk_bounds;
 use super::{ShapeHit, Surface, in_range};
 use crate::math::{Aabb, Frame, Ray, Vec2, Vec3A};

@@ -1,3 +1,5 @@
+//! An infinite plane: unbounded, so the BVH keeps it apart and tests it on every ray.
+
 use super::{ShapeHit, Surface, in_range};
 use crate::math::{Frame, Ray, Vec2, Vec3A};
 

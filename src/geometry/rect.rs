@@ -1,3 +1,6 @@
+//! A parallelogram (a rectangle with perpendicular edges): its hits, one ray at a time and
+//! eight at once, its uv, and its points sampled by area for area lights.
+
 use super::{ShapeHit, Surface, in_range};
 use crate::math::{Aabb, LANES, Ray, RayLanes, Vec2, Vec3A};
 

@@ -1,3 +1,6 @@
+//! A sphere: its hits (the quadratic without the textbook's cancellation), one ray at a time
+//! and eight at once, normal and uv, and its points sampled by solid angle for area lights.
+
 use super::{ShapeHit, Surface, equirectangular_uv, in_range};
 use crate::math::{Aabb, LANES, Ray, RayLanes, Vec2, Vec3A};
 

@@ -1,3 +1,6 @@
+//! A triangle, and the watertight ray-triangle test (Woop, Benthin and Wald) that single
+//! triangles and meshes' blocks of eight both use.
+
 use super::{ShapeHit, Surface};
 use crate::math::{Aabb, Ray, Vec2, Vec3A};
 use glam::{Mat3A, Vec4};

@@ -1,3 +1,5 @@
+//! Axis-aligned bounding boxes: union, growth, the slab test.
+
 use super::Vec3A;
 
 /// Axis-aligned bounding box. An empty box has `min > max`.

@@ -1,3 +1,5 @@
+//! Orthonormal frames about a normal or an axis: a direction into the frame and back.
+
 use super::Vec3A;
 
 /// An orthonormal basis `(u, v, w)`, used to express directions relative to a normal or an

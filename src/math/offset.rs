@@ -1,3 +1,6 @@
+//! Where a ray leaving a surface starts: off the surface by a few units in the last place of
+//! each coordinate, so secondary rays never hit their own surface at any scale.
+
 use super::Vec3A;
 
 /// Moves a hit point off its surface to the side `n` points to, so a ray leaving from it

@@ -1,3 +1,6 @@
+//! Deterministic random numbers: PCG32 streams seeded from `(seed, x, y)`, so a render is
+//! the same at any thread count.
+
 /// Mixes integers into a well-distributed 64-bit seed (SplitMix64's finaliser), so every
 /// pixel gets an independent stream from `(seed, x, y)` and a render does not depend on
 /// which thread ran which tile.

@@ -1,3 +1,6 @@
+//! Affine placements of objects (scale, rotate, translate): points, directions, normals,
+//! rays and boxes to world space and back.
+
 use super::{Aabb, Ray, Vec3, Vec3A};
 use glam::{Affine3A, EulerRot, Mat3A, Quat};
 

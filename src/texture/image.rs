@@ -1,3 +1,6 @@
+//! Image textures: pixels decoded once (8-bit ones kept as bytes read through a table of
+//! linear values), bilinear lookups through the texture's wrap, and the loading limits.
+
 use super::Wraps;
 use crate::math::{Color, Vec2};
 use std::cell::Cell;

@@ -1,3 +1,7 @@
+//! UV mappings: what texture coordinates a surface point reads (the shape's own uv, spherical,
+//! cylindrical, planar, through an affine map, or the second uv set), and their change over a
+//! pixel's footprint.
+
 use crate::geometry::equirectangular_uv;
 use crate::math::differential::seamless;
 use crate::math::{Frame, Transform, Vec2, Vec3A};
