@@ -33,6 +33,9 @@ pub struct FilmPixel {
     pub sum_sq: f32,
 }
 
+// The size the docs give (and the memory estimate in scene/limits.rs counts on).
+const _: () = assert!(std::mem::size_of::<FilmPixel>() == 36);
+
 impl FilmPixel {
     /// Adds a sample `c` whose filter weight has sign `sign`.
     #[inline]

@@ -239,3 +239,85 @@ fn the_synopses_give_every_option_and_no_other() {
     );
     assert_eq!(checked, 6);
 }
+
+/// The source folders docs/ARCHITECTURE.md maps file by file, with the file names each holds
+/// (the extensions that are code there).
+const MAPPED: &[(&str, &[&str])] = &[
+    ("src", &["rs"]),
+    ("tests/integration", &["rs"]),
+    ("benches", &["rs"]),
+    ("examples", &["rs"]),
+    ("bench", &["sh", "py"]),
+    ("fuzz/fuzz_targets", &["rs"]),
+    ("python/snell_farm", &["py"]),
+    ("python/tests", &["py"]),
+    ("src/bin/snell/serve/page", &["html", "js", "css"]),
+];
+
+/// The files of `dir` and of its folders below (those `MAPPED` does not name itself), as
+/// (folder, file name), for the extensions given.
+fn source_files(dir: &str, exts: &[&str], out: &mut Vec<(String, String)>) {
+    let mut entries: Vec<_> = std::fs::read_dir(repo(dir))
+        .unwrap_or_else(|e| panic!("{dir}: {e}"))
+        .map(|e| e.unwrap().path())
+        .collect();
+    entries.sort();
+    for path in entries {
+        let name = path.file_name().unwrap().to_string_lossy().into_owned();
+        if path.is_dir() {
+            let sub = format!("{dir}/{name}");
+            let mapped_apart = MAPPED.iter().any(|(d, _)| *d == sub);
+            // Python's caches and the tests' data folders hold no source.
+            if !mapped_apart && !name.starts_with("__") && !dir.starts_with("python") {
+                source_files(&sub, exts, out);
+            }
+        } else if exts.iter().any(|x| name.ends_with(&format!(".{x}"))) {
+            out.push((dir.to_string(), name));
+        }
+    }
+}
+
+/// The map's entries: (folder, file name) for every `- \`NAME\`:` line under a
+/// `### \`FOLDER/\`` heading.
+fn map_entries(arch: &str) -> Vec<(String, String)> {
+    let mut entries = Vec::new();
+    let mut folder: Option<String> = None;
+    for line in arch.lines() {
+        if let Some(h) = line.strip_prefix("### ") {
+            folder = h
+                .strip_prefix('`')
+                .and_then(|h| h.strip_suffix("/`"))
+                .map(str::to_string);
+        } else if line.starts_with("## ") {
+            folder = None;
+        } else if let (Some(dir), Some(rest)) = (&folder, line.strip_prefix("- `")) {
+            if let Some((name, _)) = rest.split_once("`:") {
+                entries.push((dir.clone(), name.to_string()));
+            }
+        }
+    }
+    entries
+}
+
+#[test]
+fn the_architecture_map_names_every_source_file_and_no_other() {
+    let arch = std::fs::read_to_string(repo("docs/ARCHITECTURE.md")).unwrap();
+    let mut files = Vec::new();
+    for (dir, exts) in MAPPED {
+        source_files(dir, exts, &mut files);
+    }
+    let mapped = map_entries(&arch);
+    let missing: Vec<_> = files.iter().filter(|f| !mapped.contains(f)).collect();
+    let stale: Vec<_> = mapped.iter().filter(|m| !files.contains(m)).collect();
+    assert!(
+        missing.is_empty(),
+        "docs/ARCHITECTURE.md's map lacks these files (folder, name): {missing:?}"
+    );
+    assert!(
+        stale.is_empty(),
+        "docs/ARCHITECTURE.md's map names files that are not there: {stale:?}"
+    );
+    // Every library module, binary module, test module and script of the repository.
+    assert!(files.len() > 230, "only {} source files found", files.len());
+    assert_eq!(files.len(), mapped.len());
+}
