@@ -1,5 +1,5 @@
 //! Ray query throughput: one triangle, and whole scenes through their BVHs (the Stanford
-//! bunny's 69,451 triangles, and the seed scene's nine objects).
+//! bunny's 69,451 triangles, and the seed scene's eight objects).
 //!
 //! `cargo bench --bench rays`; criterion reports time per batch and rays per second
 //! ("elem/s"). Each batch is 4,096 rays, traced on one thread.

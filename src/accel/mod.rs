@@ -1,6 +1,6 @@
 //! Finding what a ray hits first: a bounding volume hierarchy over the scene's bounded
 //! objects (built with the surface area heuristic), plus a list of unbounded ones (infinite
-//! planes) that every ray tests. Meshes and instancing will add levels below the objects.
+//! planes) that every ray tests. A mesh object walks its own BVH below (`geometry::mesh`).
 
 pub(crate) mod wide;
 
@@ -33,7 +33,7 @@ const NO_CHILD: u32 = u32::MAX;
 /// Room on the traversal stack: each level pushes at most three more entries than it pops.
 const STACK: usize = 3 * MAX_DEPTH + 1;
 /// Levels of four-wide nodes a small tree has at most, for a stack that costs less to set up
-/// (the seed scene's nine objects make two).
+/// (the seed scene's eight objects make two).
 const SMALL_DEPTH: usize = 4;
 
 /// Four children's boxes side by side (structure of arrays), tested against a ray at once.

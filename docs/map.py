@@ -1,0 +1,109 @@
+"""Prints the map section of docs/ARCHITECTURE.md from the code: each folder's line, then
+each file with the first sentence of its module doc (Rust `//!`, a Python docstring, a shell
+header comment). Run from the repository root; paste the output between "### `src/`" and
+"## Recipes". tests/integration/docs.rs checks that the map names every file."""
+
+import subprocess, re, os, collections
+files = [f for f in subprocess.run(['git','ls-files'],capture_output=True,text=True).stdout.split('\n') if f]
+
+def first_sentence(s):
+    s=' '.join(s.split())
+    cut=None
+    for m in re.finditer(r'\.(\s+(?=[A-Z(`\[])|$)', s):
+        before=s[:m.start()]
+        if re.search(r'(\bal|e\.g|i\.e|etc|\.\.|\bvs)$', before):
+            continue
+        cut=m.start()+1; break
+    s=s[:cut] if cut else s
+    return re.sub(r'\[(`[^`]+`)\](\([^)]*\))?', r'\1', s)
+
+def doc(path):
+    text=open(path,encoding='utf-8').read()
+    if path.endswith('.rs'):
+        lines=[]
+        for l in text.splitlines():
+            if l.startswith('//!') or (not lines and l.startswith('// ') and path.startswith('fuzz/')):
+                lines.append(l[3:].strip())
+            elif lines: break
+        para=[]
+        for l in lines:
+            if not l: break
+            para.append(l)
+        return first_sentence(' '.join(para))
+    if path.endswith('.py'):
+        m=re.search(r'^(?:#[^\n]*\n)*\s*(?:"""|\'\'\')(.*?)(?:\n\s*\n|"""|\'\'\')', text, re.S)
+        return first_sentence(m.group(1)) if m else ''
+    if path.endswith('.sh') or path=='.ci/run':
+        para=[]
+        for l in text.splitlines()[1:]:
+            if l.startswith('#'):
+                para.append(l[1:].strip())
+            else: break
+        return first_sentence(' '.join(para))
+    return ''
+
+INTRO = {
+ 'src/': 'The library\'s root. `lib.rs` names the modules; the three files beside it are parts of a render that stand alone.',
+ 'src/math/': 'The vocabulary every other part uses: rays, boxes, frames, transforms, offsets, random numbers, warps and their densities, and the statistics tests of sampling.',
+ 'src/sampler/': 'Where a sample\'s random numbers come from (the path tracer\'s `[integrator] sampler`).',
+ 'src/geometry/': 'Shapes in their own object space, one file each, dispatched by `match` over `Shape`; `Object` places one in the world.',
+ 'src/geometry/mesh/': 'Triangle meshes: their own wide BVH, and what a mesh carries per vertex.',
+ 'src/accel/': 'The scene\'s object BVH (binary, SAH) over `Object`s.',
+ 'src/accel/wide/': 'The eight-wide BVH a mesh walks, and its SIMD node test.',
+ 'src/bsdf/': 'BSDFs: pure functions of two directions in the shading frame, one file each, dispatched by `match` over `Bsdf`. Every BSDF passes harness.rs; those with a Mitsuba namesake pass mitsuba_tests.rs.',
+ 'src/material/': 'Materials as a scene file states them, textured, one file per `type`; each gives the BSDF at a point (path tracer) or the Phong terms (Whitted).',
+ 'src/texture/': 'Textures and what reads them: patterns, images with their MIP maps and wraps, mappings from surface points to uv, and filtering over a pixel\'s footprint.',
+ 'src/light/': 'Light sources, the environment, and the choice of a light for next-event estimation.',
+ 'src/light/sky/': 'The daylight sky and its sun.',
+ 'src/mesh_file/': 'Mesh files read into plain mesh data (no scene types): OBJ with MTL, PLY, glTF.',
+ 'src/mesh_file/gltf/': 'glTF 2.0 through the `gltf` crate, checked first so that no file makes it panic.',
+ 'src/scene/': 'The scene: its file format, its loading, and the immutable `Scene` every render thread shares, with the queries integrators make of it.',
+ 'src/scene/format/': 'The scene file one to one, as serde types; `snell schema` is generated from them (and constraints.rs).',
+ 'src/scene/load/': 'From a parsed file to a `Scene`: every value checked where it is written (each problem located, building going on to find the others), names and paths resolved, files read.',
+ 'src/scene/gltf/': 'A glTF file as a scene places it: its meshes, materials, cameras and lights as snell\'s.',
+ 'src/scene/detail/': 'Normal and bump maps applied at a hit.',
+ 'src/integrator/': 'Ways of turning a camera ray into a colour: Whitted, the path tracer, the debug views, and the recorders behind `snell explain`.',
+ 'src/film/': 'Where samples land: the reconstruction filter, the film of per-pixel sums, tiles and regions.',
+ 'src/render/': 'The render loop every render takes (whole, in passes, progressive, debug views), and the estimate of its time.',
+ 'src/output/': 'Writing what a render makes, never leaving a broken file and never over a file the render reads.',
+ 'src/bin/snell/': 'The command line, a front end: it parses flags (clap), calls the library, prints, and maps errors to exit codes.',
+ 'src/bin/snell/render/': '`snell render`, split by what it does beside rendering.',
+ 'src/bin/snell/serve/': '`snell serve`, the live preview. Its dependencies (axum, tokio, notify) are a front end\'s, so it lives in the binary.',
+ 'src/bin/snell/serve/page/': 'The page itself, built into the binary with `include_str!`.',
+ 'tests/integration/': 'One test binary (`main.rs` names the modules) of tests through the public API and the built `snell` binary. Unit tests live beside their code in `src/`.',
+ 'tests/integration/serve/': '`snell serve` tested over real sockets and, in browser.rs, in a real browser.',
+ 'benches/': '`cargo bench` (criterion).',
+ 'examples/': 'Programs that use the library for a benchmark.',
+ 'bench/': 'Benchmarks against the peers and between builds, each printing its figures; their results go to docs/perf-log.md.',
+ 'fuzz/fuzz_targets/': 'cargo-fuzz targets, one per kind of input a user hands snell (docs/fuzzing.md); `fuzz/seeds/` holds their starting corpora.',
+ 'python/snell_farm/': 'snell-farm, the Ray farm driver (`pip install ./python`), which calls the `snell` binary (docs/farm.md).',
+ 'python/tests/': 'snell-farm\'s tests (pytest), run by `.ci/run`.',
+}
+PAGE = {
+ 'index.html': 'The page\'s markup: the picture, the controls (exposure, tone curve, integrator), the status line and the explain panel.',
+ 'app.js': 'The page\'s behaviour: the event stream of new pictures and status, the controls, camera moves, and a click on the picture sent to `/explain` and shown as a tree.',
+ 'style.css': 'The page\'s look.',
+}
+ORDER = ['src/','src/math/','src/sampler/','src/geometry/','src/geometry/mesh/','src/accel/','src/accel/wide/',
+ 'src/bsdf/','src/material/','src/texture/','src/light/','src/light/sky/','src/mesh_file/','src/mesh_file/gltf/',
+ 'src/scene/','src/scene/format/','src/scene/load/','src/scene/gltf/','src/scene/detail/','src/integrator/',
+ 'src/film/','src/render/','src/output/','src/bin/snell/','src/bin/snell/render/','src/bin/snell/serve/','src/bin/snell/serve/page/',
+ 'tests/integration/','tests/integration/serve/','benches/','examples/','bench/','fuzz/fuzz_targets/','python/snell_farm/','python/tests/']
+groups=collections.OrderedDict((d,[]) for d in ORDER)
+for f in files:
+    if f.startswith(('tests/bad/','tests/data/','tests/golden/','fuzz/seeds','docs/','assets/','scenes/','"')): continue
+    d=os.path.dirname(f)+'/'
+    if d not in groups: continue
+    b=os.path.basename(f)
+    if d=='src/bin/snell/serve/page/':
+        groups[d].append((b,PAGE[b])); continue
+    if not f.endswith(('.rs','.py','.sh')): continue
+    groups[d].append((b,doc(f)))
+out=[]
+for d,items in groups.items():
+    out.append(f'\n### `{d}`\n')
+    out.append(INTRO[d]+'\n')
+    for n,s in items:
+        assert s, (d,n)
+        out.append(f'- `{n}`: {s}')
+print('\n'.join(out))
