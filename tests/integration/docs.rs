@@ -290,10 +290,12 @@ fn map_entries(arch: &str) -> Vec<(String, String)> {
                 .map(str::to_string);
         } else if line.starts_with("## ") {
             folder = None;
-        } else if let (Some(dir), Some(rest)) = (&folder, line.strip_prefix("- `")) {
-            if let Some((name, _)) = rest.split_once("`:") {
-                entries.push((dir.clone(), name.to_string()));
-            }
+        } else if let (Some(dir), Some((name, _))) = (
+            &folder,
+            line.strip_prefix("- `")
+                .and_then(|rest| rest.split_once("`:")),
+        ) {
+            entries.push((dir.clone(), name.to_string()));
         }
     }
     entries
