@@ -4,7 +4,7 @@ header comment). Run from the repository root; paste the output between "### `sr
 "## Recipes". tests/integration/docs.rs checks that the map names every file."""
 
 import subprocess, re, os, collections
-files = [f for f in subprocess.run(['git','ls-files'],capture_output=True,text=True).stdout.split('\n') if f]
+files = [f for f in subprocess.run(['git','ls-files','--cached','--others','--exclude-standard'],capture_output=True,text=True).stdout.split('\n') if f]
 
 def first_sentence(s):
     s=' '.join(s.split())
@@ -56,6 +56,8 @@ INTRO = {
  'src/light/': 'Light sources, the environment, and the choice of a light for next-event estimation.',
  'src/light/sky/': 'The daylight sky and its sun.',
  'src/mesh_file/': 'Mesh files read into plain mesh data (no scene types): OBJ with MTL, PLY, glTF.',
+ 'src/mesh_file/obj/': 'Wavefront OBJ: the parser, the mesh it builds at the end, MTL libraries and the text helpers both share.',
+ 'src/mesh_file/ply/': 'Stanford PLY: the header, the plan it gives, the two encodings, and the body read through them.',
  'src/mesh_file/gltf/': 'glTF 2.0 through the `gltf` crate, checked first so that no file makes it panic.',
  'src/scene/': 'The scene: its file format, its loading, and the immutable `Scene` every render thread shares, with the queries integrators make of it.',
  'src/scene/format/': 'The scene file one to one, as serde types; `snell schema` is generated from them (and constraints.rs).',
@@ -85,15 +87,19 @@ PAGE = {
  'style.css': 'The page\'s look.',
 }
 ORDER = ['src/','src/math/','src/sampler/','src/geometry/','src/geometry/mesh/','src/accel/','src/accel/wide/',
- 'src/bsdf/','src/material/','src/texture/','src/light/','src/light/sky/','src/mesh_file/','src/mesh_file/gltf/',
+ 'src/bsdf/','src/material/','src/texture/','src/light/','src/light/sky/','src/mesh_file/','src/mesh_file/obj/','src/mesh_file/ply/','src/mesh_file/gltf/',
  'src/scene/','src/scene/format/','src/scene/load/','src/scene/gltf/','src/scene/detail/','src/integrator/',
  'src/film/','src/render/','src/output/','src/bin/snell/','src/bin/snell/render/','src/bin/snell/serve/','src/bin/snell/serve/page/',
  'tests/integration/','tests/integration/serve/','benches/','examples/','bench/','fuzz/fuzz_targets/','python/snell_farm/','python/tests/']
 groups=collections.OrderedDict((d,[]) for d in ORDER)
 for f in files:
     if f.startswith(('tests/bad/','tests/data/','tests/golden/','fuzz/seeds','docs/','assets/','scenes/','"')): continue
+    if not os.path.exists(f): continue
     d=os.path.dirname(f)+'/'
-    if d not in groups: continue
+    if d not in groups:
+        if f.endswith(('.rs','.py','.sh')) and d.startswith(('src/','tests/integration/','bench/','python/snell_farm/','python/tests/')) and not d.startswith('python/tests/data'):
+            raise SystemExit(f'{d}: a folder this script does not know; add it to ORDER and INTRO')
+        continue
     b=os.path.basename(f)
     if d=='src/bin/snell/serve/page/':
         groups[d].append((b,PAGE[b])); continue
