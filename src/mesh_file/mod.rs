@@ -1,5 +1,5 @@
 //! Triangle mesh files: Wavefront OBJ (with MTL materials), Stanford PLY, and glTF 2.0
-//! scenes of meshes (gltf.rs).
+//! scenes of meshes (`gltf/`).
 //!
 //! [`load`] picks the loader from the file extension. The loaders never panic on bad
 //! input: every problem is either a [`MeshError`] naming the file and a line (text) or
