@@ -73,6 +73,8 @@ INTRO = {
  'src/bin/snell/serve/': '`snell serve`, the live preview. Its dependencies (axum, tokio, notify) are a front end\'s, so it lives in the binary.',
  'src/bin/snell/serve/page/': 'The page itself, built into the binary with `include_str!`.',
  'tests/integration/': 'One test binary (`main.rs` names the modules) of tests through the public API and the built `snell` binary. Unit tests live beside their code in `src/`.',
+ 'tests/integration/cli/': 'The command line as a user meets it, through the built binary.',
+ 'tests/integration/schema/': 'The JSON Schema against the parser and against `snell check`.',
  'tests/integration/serve/': '`snell serve` tested over real sockets and, in browser.rs, in a real browser.',
  'benches/': '`cargo bench` (criterion).',
  'examples/': 'Programs that use the library for a benchmark.',
@@ -90,7 +92,7 @@ ORDER = ['src/','src/math/','src/sampler/','src/geometry/','src/geometry/mesh/',
  'src/bsdf/','src/material/','src/texture/','src/light/','src/light/sky/','src/mesh_file/','src/mesh_file/obj/','src/mesh_file/ply/','src/mesh_file/gltf/',
  'src/scene/','src/scene/format/','src/scene/load/','src/scene/gltf/','src/scene/detail/','src/integrator/',
  'src/film/','src/render/','src/output/','src/bin/snell/','src/bin/snell/render/','src/bin/snell/serve/','src/bin/snell/serve/page/',
- 'tests/integration/','tests/integration/serve/','benches/','examples/','bench/','fuzz/fuzz_targets/','python/snell_farm/','python/tests/']
+ 'tests/integration/','tests/integration/cli/','tests/integration/schema/','tests/integration/serve/','benches/','examples/','bench/','fuzz/fuzz_targets/','python/snell_farm/','python/tests/']
 groups=collections.OrderedDict((d,[]) for d in ORDER)
 for f in files:
     if f.startswith(('tests/bad/','tests/data/','tests/golden/','fuzz/seeds','docs/','assets/','scenes/','"')): continue

@@ -2,7 +2,7 @@
 //! numbers, the keys that must be given, and the keys that exclude or need one another, as
 //! the scene builder checks them, so that an editor marks what `snell check` refuses. What a
 //! schema cannot say (a name that names nothing, a file that cannot be read, a box whose
-//! `max` is below its `min`) stays the builder's alone; tests/integration/schema.rs lists
+//! `max` is below its `min`) stays the builder's alone; tests/integration/schema/verdicts.rs lists
 //! each such case of tests/bad/ and fails on any other disagreement.
 
 use serde_json::{Map, Value, json};
