@@ -2,6 +2,7 @@
 //! objects (built with the surface area heuristic), plus a list of unbounded ones (infinite
 //! planes) that every ray tests. A mesh object walks its own BVH below (`geometry::mesh`).
 
+mod build;
 pub(crate) mod wide;
 
 use crate::geometry::Object;
@@ -10,21 +11,9 @@ use crate::math::{Aabb, LANES, Ray, RayLanes, Vec3A};
 use glam::Vec4;
 use wide::{MESH_ROOT_FIRST, NodeRay, WideNode};
 
-/// Most objects in one leaf.
-const LEAF_SIZE: usize = 1;
 /// Deepest tree built: below this depth a node becomes a leaf whatever its size, so the
 /// traversal stack (one entry per level) can never overflow.
 const MAX_DEPTH: usize = 16;
-
-/// A node of the binary tree the builder makes, before it is collapsed to four-wide nodes.
-#[derive(Clone, Copy, Debug)]
-struct BinaryNode {
-    bounds: Aabb,
-    /// Leaf: first index into `order`; inner: index of the first child (the second follows).
-    first: u32,
-    /// Objects in a leaf; 0 for inner nodes.
-    count: u32,
-}
 
 /// Marks a child reference as a leaf (index into `leaves`).
 const LEAF: u32 = 1 << 31;
@@ -171,100 +160,12 @@ impl BoxRay {
 }
 
 impl Bvh {
-    /// Builds the hierarchy over the objects' world bounds: a binary tree by the surface area
-    /// heuristic, collapsed to four children per node so one SIMD test covers four boxes.
-    pub fn build(objects: &[Object]) -> Self {
-        let mut bvh = Bvh::default();
-        let mut items: Vec<(u32, Aabb)> = vec![];
-        for (i, o) in objects.iter().enumerate() {
-            match o.world_bounds {
-                Some(b) if b.is_finite() => items.push((i as u32, b)),
-                _ => bvh.unbounded.push(i as u32),
-            }
-        }
-        if !items.is_empty() && items.len() <= FLAT {
-            let mut flat = Flat {
-                node: WideNode::EMPTY,
-                first: items[0].1,
-                used: 0,
-                lone_walk: items.len() == 1 && {
-                    let o = &objects[items[0].0 as usize];
-                    o.transform.is_none() && matches!(o.shape, Shape::Mesh(_)) && MESH_ROOT_FIRST
-                },
-            };
-            bvh.flat_bit = vec![0; objects.len()];
-            for (k, (i, b)) in items.iter().enumerate() {
-                flat.node.set_child(k, b, *i);
-                flat.used |= 1 << k;
-                bvh.flat_bit[*i as usize] = 1 << k;
-            }
-            bvh.flat = Some(flat);
-        } else if !items.is_empty() {
-            let mut binary = vec![BinaryNode {
-                bounds: Aabb::EMPTY,
-                first: 0,
-                count: 0,
-            }];
-            split(&mut binary, &mut bvh.order, 0, &mut items, 1);
-            let root = bvh.collapse(&binary, 0);
-            bvh.root = Some((root, binary[0].bounds));
-            bvh.depth = bvh.depth_below(root);
-        }
-        bvh
-    }
-
     /// Bytes the hierarchy takes.
     pub fn bytes(&self) -> usize {
         self.flat.map_or(0, |_| std::mem::size_of::<Flat>())
             + self.nodes.len() * std::mem::size_of::<Node4>()
             + self.leaves.len() * 8
             + (self.order.len() + self.unbounded.len() + self.flat_bit.len()) * 4
-    }
-
-    /// Levels of four-wide nodes from `r` down.
-    fn depth_below(&self, r: u32) -> usize {
-        if r & LEAF != 0 {
-            return 0;
-        }
-        let n = &self.nodes[r as usize];
-        1 + n
-            .child
-            .iter()
-            .filter(|&&c| c != NO_CHILD)
-            .map(|&c| self.depth_below(c))
-            .max()
-            .unwrap_or(0)
-    }
-
-    /// Turns binary node `b` (and its subtree) into four-wide nodes; returns its reference.
-    fn collapse(&mut self, binary: &[BinaryNode], b: usize) -> u32 {
-        let node = &binary[b];
-        if node.count > 0 {
-            self.leaves.push((node.first, node.count));
-            return LEAF | (self.leaves.len() - 1) as u32;
-        }
-        // Open the largest inner child until there are four.
-        let mut kids = vec![node.first as usize, node.first as usize + 1];
-        while kids.len() < 4 {
-            let widest = kids
-                .iter()
-                .enumerate()
-                .filter(|(_, k)| binary[**k].count == 0)
-                .max_by(|a, b| area(&binary[*a.1].bounds).total_cmp(&area(&binary[*b.1].bounds)));
-            let Some((pos, &k)) = widest else {
-                break;
-            };
-            kids.swap_remove(pos);
-            kids.push(binary[k].first as usize);
-            kids.push(binary[k].first as usize + 1);
-        }
-        let index = self.nodes.len();
-        self.nodes.push(Node4::EMPTY);
-        for (lane, &k) in kids.iter().enumerate() {
-            let child = self.collapse(binary, k);
-            self.nodes[index].set_lane(lane, &binary[k].bounds, child);
-        }
-        index as u32
     }
 
     /// Calls `visit(object, t_max)` for every object but `skip` whose bounds the ray may
@@ -581,70 +482,6 @@ impl Bvh {
     }
 }
 
-/// Splits binary node `node` over `items` by the surface area heuristic (every split of the
-/// centroid order on each axis), down to `LEAF_SIZE` objects or `MAX_DEPTH` levels.
-fn split(
-    nodes: &mut Vec<BinaryNode>,
-    order: &mut Vec<u32>,
-    node: usize,
-    items: &mut [(u32, Aabb)],
-    depth: usize,
-) {
-    let bounds = items.iter().fold(Aabb::EMPTY, |b, (_, ib)| b.union(ib));
-    nodes[node].bounds = bounds;
-    if items.len() <= LEAF_SIZE || depth >= MAX_DEPTH {
-        nodes[node].first = order.len() as u32;
-        nodes[node].count = items.len() as u32;
-        order.extend(items.iter().map(|(i, _)| *i));
-        return;
-    }
-    let mut best = (f32::INFINITY, 0usize, 0usize);
-    for axis in 0..3 {
-        items.sort_by(|a, b| a.1.center()[axis].total_cmp(&b.1.center()[axis]));
-        let mut right_areas = vec![0.0f32; items.len()];
-        let mut acc = Aabb::EMPTY;
-        for k in (1..items.len()).rev() {
-            acc = acc.union(&items[k].1);
-            right_areas[k] = area(&acc);
-        }
-        let mut left = Aabb::EMPTY;
-        for k in 1..items.len() {
-            left = left.union(&items[k - 1].1);
-            let cost = area(&left) * k as f32 + right_areas[k] * (items.len() - k) as f32;
-            if cost < best.0 {
-                best = (cost, axis, k);
-            }
-        }
-    }
-    if !best.0.is_finite() || best.2 == 0 {
-        // No split has a finite cost (boxes too large for f32 areas): halve by count along
-        // the widest axis, which always makes progress.
-        let extent = bounds.max - bounds.min;
-        let widest = if extent.x >= extent.y && extent.x >= extent.z {
-            0
-        } else if extent.y >= extent.z {
-            1
-        } else {
-            2
-        };
-        best = (0.0, widest, items.len() / 2);
-    }
-    let (_, axis, at) = best;
-    items.sort_by(|a, b| a.1.center()[axis].total_cmp(&b.1.center()[axis]));
-    let first_child = nodes.len();
-    for _ in 0..2 {
-        nodes.push(BinaryNode {
-            bounds: Aabb::EMPTY,
-            first: 0,
-            count: 0,
-        });
-    }
-    nodes[node].first = first_child as u32;
-    let (l, r) = items.split_at_mut(at);
-    split(nodes, order, first_child, l, depth + 1);
-    split(nodes, order, first_child + 1, r, depth + 1);
-}
-
 /// Pushes `entry` (a child's reference and where the ray enters its box) on top of
 /// `stack[..*top]`. When `ORDERED`, the entries pushed since `base` stay sorted farthest
 /// first, so that the nearest child is popped next; any-hit walks stop at the first hit
@@ -665,116 +502,5 @@ pub(crate) fn push_child<const ORDERED: bool>(
     *top += 1;
 }
 
-fn area(b: &Aabb) -> f32 {
-    let d = (b.max - b.min).max(Vec3A::ZERO);
-    d.x * d.y + d.y * d.z + d.z * d.x
-}
-
 #[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::geometry::{Shape, Sphere};
-    use crate::math::Rng;
-
-    fn spheres(n: usize, rng: &mut Rng) -> Vec<Object> {
-        (0..n)
-            .map(|i| {
-                // Crowded, so that rays cross several boxes and the order of visits matters.
-                let center = Vec3A::new(
-                    rng.next_f32() * 8.0 - 4.0,
-                    rng.next_f32() * 8.0 - 4.0,
-                    rng.next_f32() * 8.0 - 4.0,
-                );
-                let shape = Shape::Sphere(Sphere {
-                    center,
-                    radius: 0.3 + rng.next_f32() * 2.0,
-                });
-                Object {
-                    name: format!("sphere {i}"),
-                    world_bounds: shape.bounds(),
-                    shape,
-                    transform: None,
-                    material: 0,
-                    slot_materials: vec![],
-                    center,
-                    uv_scale: crate::math::Vec2::ONE,
-                }
-            })
-            .collect()
-    }
-
-    /// Both layouts, the flat one of small scenes and the tree, give what testing every
-    /// object gives: the same nearest hit, a blocker exactly when there is one, and word of
-    /// the other objects whenever one of them is hit; with an object left out, as if it
-    /// were not there.
-    #[test]
-    fn flat_and_tree_layouts_agree_with_testing_every_object() {
-        let mut rng = Rng::new(11);
-        // Rays whose nearest hit the layouts were compared on, flat and tree.
-        let (mut flat_hits, mut tree_hits) = (0, 0);
-        for n in [1, 2, 5, FLAT - 1, FLAT, FLAT + 1, 13, 40] {
-            let objects = spheres(n, &mut rng);
-            let bvh = Bvh::build(&objects);
-            assert_eq!(bvh.flat.is_some(), n <= FLAT);
-            for _ in 0..2000 {
-                let origin = Vec3A::new(
-                    rng.next_f32() * 16.0 - 8.0,
-                    rng.next_f32() * 16.0 - 8.0,
-                    rng.next_f32() * 16.0 - 8.0,
-                );
-                let dir = Vec3A::new(
-                    rng.next_f32() - 0.5,
-                    rng.next_f32() - 0.5,
-                    rng.next_f32() - 0.5,
-                )
-                .normalize();
-                let ray = Ray::new(origin, dir);
-                let t_max = if rng.next_f32() < 0.5 {
-                    8.0
-                } else {
-                    f32::INFINITY
-                };
-                // Half the rays leave one object out (which need not be near them).
-                let left_out = (rng.next_f32() < 0.5).then(|| (rng.next_f32() * n as f32) as usize);
-                let skip = left_out.map_or(Skip::NONE, Skip::object);
-                let kept = || {
-                    objects
-                        .iter()
-                        .enumerate()
-                        .filter(|(i, _)| Some(*i) != left_out)
-                };
-                let brute = kept()
-                    .filter_map(|(i, o)| o.intersect(&ray, t_max).map(|h| (i, h.t)))
-                    .min_by(|a, b| a.1.total_cmp(&b.1));
-                let found = bvh
-                    .closest_hit(&objects, &ray, t_max, skip)
-                    .map(|(i, h)| (i, h.t));
-                assert_eq!(found, brute, "{n} objects, {ray:?}, {skip:?}");
-                let hit = usize::from(brute.is_some());
-                if n <= FLAT {
-                    flat_hits += hit;
-                } else {
-                    tree_hits += hit;
-                }
-                let odd = |i: usize| i % 2 == 1;
-                let blocked = kept().any(|(i, o)| odd(i) && o.intersect(&ray, t_max).is_some());
-                assert_eq!(bvh.any_hit(&objects, &ray, t_max, skip, odd), blocked);
-                // Without a blocker, "met no other object's bounds" must mean no other
-                // object is hit: shadow rays skip the glass on its word.
-                let (blocker, others) =
-                    bvh.first_blocker_and_others(&objects, &ray, t_max, skip, odd);
-                assert_eq!(blocker.is_some(), blocked);
-                assert!(
-                    left_out.is_none() || blocker != left_out,
-                    "blocked by the object left out"
-                );
-                let other_hit = kept().any(|(i, o)| !odd(i) && o.intersect(&ray, t_max).is_some());
-                assert!(blocked || others || !other_hit, "{n} objects, {ray:?}");
-            }
-        }
-        // Replaying the generator: about 590 of the flat layouts' 10,000 rays hit a sphere
-        // (few of them with one or two spheres) and about 1,090 of the tree's 6,000.
-        assert!(flat_hits > 250, "{flat_hits} hits in the flat layout");
-        assert!(tree_hits > 500, "{tree_hits} hits in the tree");
-    }
-}
+mod tests;
