@@ -68,8 +68,8 @@ struct Flat {
     /// A bit per child slot that holds an object.
     used: u32,
     /// The lone object is a mesh in world space whose walk tests its root node before
-    /// anything else: that test is the box test, and a second one only costs the rays that
-    /// meet the mesh (random rays through the bunny: 3 % of their time).
+    /// anything else: that test is the box test, so the object's own box is not tested
+    /// first, which would cost every ray that meets the mesh a second test for nothing.
     lone_walk: bool,
 }
 
@@ -337,7 +337,8 @@ impl Bvh {
     /// does this.
     ///
     /// Always inlined into the scene's batch query: the inliner left it out of line once
-    /// that query grew, which cost a textured mesh scene 3 % (docs/perf-log.md).
+    /// that query grew, and the call, paid on every batch of camera rays, made renders
+    /// slower (docs/perf-log.md).
     #[inline(always)]
     pub fn closest_hits(
         &self,

@@ -111,7 +111,7 @@ pub struct CoatKnots {
 
 impl CoatKnots {
     /// The knots of index `eta`, made once in the process (in parallel: 24 tables' work,
-    /// about 0.4 s on two cores) and shared after.
+    /// long enough to notice at start-up) and shared after.
     pub fn of(eta: f32) -> &'static CoatKnots {
         static KNOTS_BY_ETA: OnceLock<Mutex<HashMap<u32, &'static CoatKnots>>> = OnceLock::new();
         let all = KNOTS_BY_ETA.get_or_init(Default::default);

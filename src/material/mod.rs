@@ -164,8 +164,8 @@ pub enum Surface {
 impl Material {
     /// The Phong terms at a surface point: the constants, with what textures give in
     /// place of those the file names textures for. Borrowed where no texture gives any
-    /// (most materials): Whitted asks at every hit, and copying them there cost the seed
-    /// scene 3 %.
+    /// (most materials): Whitted asks at every hit, so a copy there is paid on every ray,
+    /// and measurably (docs/perf-log.md).
     #[inline(always)]
     pub fn terms_at(&self, textures: &[Texture], p: &TexturePoint) -> Cow<'_, PhongTerms> {
         match &self.textured {

@@ -46,10 +46,10 @@ fn offset_scalar(p: Vec3A, n: Vec3A) -> Vec3A {
     Vec3A::from_array(out)
 }
 
-/// [`offset_scalar`] on all three coordinates at once (SSE2, which every x86-64 CPU has): a
-/// hit point's offset was 44 instructions of every seed scene sample. The same values for
-/// every unit `n`: `32 n` lies well inside `i32`, where truncation by `cvttps2dq` and
-/// Rust's `as i32` agree.
+/// [`offset_scalar`] on all three coordinates at once (SSE2, which every x86-64 CPU has):
+/// every hit of every sample offsets its point, so the scalar code, one coordinate at a time,
+/// was a visible part of each sample's instructions. The same values for every unit `n`:
+/// `32 n` lies well inside `i32`, where truncation by `cvttps2dq` and Rust's `as i32` agree.
 #[cfg(target_arch = "x86_64")]
 #[inline]
 fn offset_sse2(p: Vec3A, n: Vec3A) -> Vec3A {

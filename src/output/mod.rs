@@ -70,8 +70,8 @@ pub fn linear_to_srgb(x: f32) -> f32 {
 }
 
 /// The image as 8-bit sRGB, clamped, row by row (`R, G, B` per pixel). On every core: a
-/// megapixel is three million `powf`, which on one core kept the other idle for ~15 ms at the
-/// end of every render.
+/// megapixel is three million `powf`, which on one core kept the others idle at the end of
+/// every render.
 pub fn to_srgb8(img: &Image) -> Vec<u8> {
     to_srgb8_toned(img, &tone::Tone::default())
 }

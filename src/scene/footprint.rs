@@ -31,7 +31,8 @@ pub enum RayDifferentials {
     None,
     /// The ray is a camera ray of the scene's camera: its differentials are the camera's.
     Camera,
-    /// These.
+    /// Worked out and carried with the ray: those a mirror or glass passed on from the ray
+    /// before.
     Known(Differentials),
 }
 

@@ -31,8 +31,8 @@ pub struct ImageData {
 enum Texels {
     /// 8-bit files (JPEG, most PNGs) keep their bytes, `R, G, B` per texel, read through a
     /// 256-entry table of linear values: a quarter of the memory of floats, and no pass
-    /// over a fresh buffer at load (for the seed scene's 2048 x 1024 Earth, 6 MiB instead
-    /// of 24 and 30 ms less to start).
+    /// over a fresh buffer at load, which a scene with a large image would wait on before
+    /// its first pixel.
     Bytes {
         rgb: Vec<u8>,
         linear: Box<[f32; 256]>,

@@ -17,10 +17,11 @@ use super::{LEAF, WideNode};
 use crate::math::{Aabb, Vec3A};
 use obvhs::bvh2::Bvh2;
 
-/// Most triangles in a leaf: the eight lanes of a block, tested in one AVX step. (Leaves of
-/// up to four, in blocks of four lanes, made random rays through the bunny 8 % slower and
-/// its tree twice the size; leaves of eight as two four-lane blocks tested one after the
-/// other measured no faster than those.)
+/// Most triangles in a leaf: the eight lanes of a block, tested in one AVX step, which costs
+/// about what a four-lane test does, so larger leaves make a shallower, smaller tree for
+/// little more work. (Leaves of up to four, in blocks of four lanes, were slower and their
+/// trees larger; leaves of eight as two four-lane blocks tested one after the other gained
+/// nothing over those: docs/perf-log.md.)
 pub(crate) const LEAF_SIZE: usize = 8;
 
 /// What the walk pays to test a node's eight boxes, in the units of the SAH (per unit of a

@@ -116,8 +116,8 @@ impl WideBvh {
     /// [`WideBvh::walk`] for closest hits where the build has AVX2 and FMA, with nothing in
     /// a node's visit branching on how many of its children the ray meets: for random rays
     /// that number changes from node to node, and the branches on it (none, one or more
-    /// met, the insertion sort of those pushed) were mispredicted about six times a ray
-    /// (cachegrind, 11 a random teapot ray in all; 6 with this walk, as many as Embree's).
+    /// met, the insertion sort of those pushed) were half of the walk's mispredictions;
+    /// without them it mispredicts about as often as Embree's (docs/perf-log.md).
     ///
     /// The nearest child met is found as the least of eight keys, each an entry distance
     /// with its slot in the three low bits (the children not met get the largest key), and

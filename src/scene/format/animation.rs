@@ -119,9 +119,9 @@ pub struct LightKeyDef {
     pub direction: Option<V3>,
     /// Point a spot is aimed at (spots aimed by `look_at`).
     pub look_at: Option<V3>,
-    /// Colour.
+    /// The light's `color` at this key, in linear RGB.
     pub color: Option<ColorDef>,
-    /// Multiplier.
+    /// The light's `intensity` at this key: the factor on its colour (at least 0).
     pub intensity: Option<f32>,
 }
 

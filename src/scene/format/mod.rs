@@ -71,7 +71,7 @@ pub struct SceneFile {
     /// Meshes defined once and placed by objects of type `mesh` (instancing).
     #[serde(default)]
     pub meshes: BTreeMap<String, MeshDef>,
-    /// Shapes.
+    /// The scene's objects: shapes, meshes and placed groups, each with its material.
     #[serde(default)]
     pub objects: Vec<ObjectDef>,
     /// Groups of objects defined once and placed by objects of type `group` (instancing).
@@ -269,15 +269,15 @@ pub enum LightDef {
     Point {
         /// Name, for messages and `[[animation.lights]]`.
         name: Option<String>,
-        /// Position.
+        /// Where the light is, in the scene's coordinates.
         position: V3,
         /// How its light weakens with distance (default: `none` under the Whitted
         /// integrator, `inverse_square` under the path tracer).
         falloff: Option<Falloff>,
-        /// Colour.
+        /// Colour of the light, in linear RGB; `intensity` scales it.
         #[serde(default = "white")]
         color: ColorDef,
-        /// Multiplier.
+        /// Factor on `color`: how strong the light is (at least 0).
         #[serde(default = "one")]
         intensity: f32,
     },
@@ -287,10 +287,10 @@ pub enum LightDef {
         name: Option<String>,
         /// Direction the light travels.
         direction: V3,
-        /// Colour.
+        /// Colour of the light, in linear RGB; `intensity` scales it.
         #[serde(default = "white")]
         color: ColorDef,
-        /// Multiplier.
+        /// Factor on `color`: how strong the light is (at least 0).
         #[serde(default = "one")]
         intensity: f32,
     },
@@ -298,7 +298,7 @@ pub enum LightDef {
     Spot {
         /// Name, for messages and `[[animation.lights]]`.
         name: Option<String>,
-        /// Position.
+        /// Where the light is, in the scene's coordinates.
         position: V3,
         /// How its light weakens with distance (default: `none` under the Whitted
         /// integrator, `inverse_square` under the path tracer).
@@ -307,10 +307,10 @@ pub enum LightDef {
         look_at: Option<V3>,
         /// Direction of the cone's axis (or give `look_at`).
         direction: Option<V3>,
-        /// Colour.
+        /// Colour of the light, in linear RGB; `intensity` scales it.
         #[serde(default = "white")]
         color: ColorDef,
-        /// Multiplier.
+        /// Factor on `color`: how strong the light is (at least 0).
         #[serde(default = "one")]
         intensity: f32,
         /// Half-angle of the cone, degrees.
@@ -332,7 +332,7 @@ pub struct TransformDef {
     /// Degrees about x, then y, then z.
     #[serde(default)]
     pub rotate: V3,
-    /// Offset.
+    /// Offset `[x, y, z]`, added after the scale and the rotation.
     #[serde(default)]
     pub translate: V3,
 }

@@ -33,7 +33,8 @@ macro_rules! object_defs {
                 pub name: Option<String>,
                 /// Name of the material (meshes may take theirs from their MTL file).
                 pub material: Option<String>,
-                /// Placement.
+                /// Scale, rotation and offset from the shape's own coordinates to its parent's:
+                /// the scene's, or those of the group or `csg` object it is in (default: none).
                 pub transform: Option<TransformDef>,
                 /// Factors on the shape's own uv, `[u, v]` or one number (default 1): a
                 /// rectangle's `[width, height]` makes its uv run in scene units, as a plane's.
@@ -70,9 +71,9 @@ macro_rules! object_defs {
 object_defs! {
     /// A sphere.
     Sphere(SphereDef) {
-        /// Centre.
+        /// Centre, in the object's own coordinates (before its `transform`).
         center: V3 = "origin",
-        /// Radius.
+        /// Radius, greater than 0, in the object's own units (before its `transform`).
         radius: f32,
     }
     /// An infinite plane.
@@ -106,9 +107,9 @@ object_defs! {
         base: V3 = "origin",
         /// Axis direction.
         axis: V3 = "y_axis",
-        /// Radius.
+        /// Radius, greater than 0, in the object's own units (before its `transform`).
         radius: f32,
-        /// Length.
+        /// Length along the axis from `base` to the centre of the top, greater than 0.
         height: f32,
         /// Closed ends.
         capped: bool = "yes",
@@ -149,11 +150,11 @@ object_defs! {
     }
     /// A disk.
     Disk(DiskDef) {
-        /// Centre.
+        /// Centre, in the object's own coordinates (before its `transform`).
         center: V3 = "origin",
-        /// Normal.
+        /// Its normal: the direction perpendicular to it (any length but 0).
         normal: V3 = "y_axis",
-        /// Radius.
+        /// Radius, greater than 0, in the object's own units (before its `transform`).
         radius: f32,
     }
     /// A triangle.

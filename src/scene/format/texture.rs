@@ -24,7 +24,7 @@ pub enum TextureDef {
         /// (its edges stretched) or `mirror`.
         #[serde(default)]
         wrap: WrapDef,
-        /// Placement.
+        /// How points of the surface get texture coordinates (default: the shape's own uv).
         #[serde(default)]
         mapping: MappingDef,
     },
@@ -39,7 +39,7 @@ pub enum TextureDef {
         /// Cell side in texture units.
         #[serde(default = "one")]
         size: f32,
-        /// Placement.
+        /// How points of the surface get texture coordinates (default: the shape's own uv).
         #[serde(default)]
         mapping: MappingDef,
     },
@@ -54,7 +54,7 @@ pub enum TextureDef {
         /// Band width in texture units.
         #[serde(default = "one")]
         width: f32,
-        /// Placement.
+        /// How points of the surface get texture coordinates (default: the shape's own uv).
         #[serde(default)]
         mapping: MappingDef,
     },
