@@ -15,6 +15,8 @@
 #![forbid(unsafe_code)]
 #![deny(missing_docs)]
 
+mod closed_set;
+
 pub mod accel;
 pub mod bsdf;
 pub mod camera;

@@ -3,7 +3,7 @@
 //! on the side light arrives from: the surface is taken two-sided by mirroring `z`.
 
 use super::microfacet::Ggx;
-use super::{BsdfSample, Lobe, fresnel, front, same_hemisphere, to_side_of};
+use super::{BsdfSample, Lobe, Scatter, fresnel, front, same_hemisphere, to_side_of};
 use crate::math::{Color, Vec2, Vec3A};
 
 /// How much a conductor reflects at each angle.
@@ -41,9 +41,9 @@ pub struct Conductor {
     pub tint: Color,
 }
 
-impl Conductor {
+impl Scatter for Conductor {
     /// The rough lobe's value (0 for a smooth conductor, whose lobe is a delta).
-    pub fn f(&self, wo: Vec3A, wi: Vec3A) -> Color {
+    fn f(&self, wo: Vec3A, wi: Vec3A) -> Color {
         if self.distribution.is_smooth() || !same_hemisphere(wo, wi) {
             return Color::ZERO;
         }
@@ -56,7 +56,7 @@ impl Conductor {
 
     /// The mirror direction (smooth), or the reflection of `wo` about a visible microfacet
     /// normal (rough).
-    pub fn sample(&self, wo: Vec3A, u: Vec2) -> Option<BsdfSample> {
+    fn sample(&self, wo: Vec3A, u: Vec2, _uc: f32) -> Option<BsdfSample> {
         if wo.z == 0.0 {
             return None;
         }
@@ -81,13 +81,25 @@ impl Conductor {
     }
 
     /// The density of [`Conductor::sample`]'s rough lobe.
-    pub fn pdf(&self, wo: Vec3A, wi: Vec3A) -> f32 {
+    fn pdf(&self, wo: Vec3A, wi: Vec3A) -> f32 {
         if self.distribution.is_smooth() || !same_hemisphere(wo, wi) {
             return 0.0;
         }
         self.distribution
             .reflection(front(wo), front(wi))
             .map_or(0.0, |r| r.pdf)
+    }
+
+    fn name(&self) -> &'static str {
+        if self.distribution.is_smooth() {
+            "smooth conductor"
+        } else {
+            "rough conductor"
+        }
+    }
+
+    fn has_non_delta(&self) -> bool {
+        !self.distribution.is_smooth()
     }
 }
 

@@ -5,7 +5,7 @@
 //! medium concentrates radiance by `eta^2`.
 
 use super::microfacet::Ggx;
-use super::{BsdfSample, Lobe};
+use super::{BsdfSample, Lobe, Scatter};
 use crate::math::{Color, Vec2, Vec3A, fresnel_dielectric};
 
 /// A dielectric boundary.
@@ -80,9 +80,11 @@ impl Dielectric {
         let w = if wo.z < 0.0 { -wo } else { wo };
         self.distribution.visible_pdf(w, wm)
     }
+}
 
+impl Scatter for Dielectric {
     /// The rough lobes' value (0 for a smooth boundary).
-    pub fn f(&self, wo: Vec3A, wi: Vec3A) -> Color {
+    fn f(&self, wo: Vec3A, wi: Vec3A) -> Color {
         if self.smooth() {
             return Color::ZERO;
         }
@@ -102,7 +104,7 @@ impl Dielectric {
     }
 
     /// Reflection or refraction, chosen in proportion to the Fresnel reflectance by `uc`.
-    pub fn sample(&self, wo: Vec3A, u: Vec2, uc: f32) -> Option<BsdfSample> {
+    fn sample(&self, wo: Vec3A, u: Vec2, uc: f32) -> Option<BsdfSample> {
         if wo.z == 0.0 {
             return None;
         }
@@ -152,7 +154,7 @@ impl Dielectric {
     }
 
     /// The density of [`Dielectric::sample`]'s rough lobes.
-    pub fn pdf(&self, wo: Vec3A, wi: Vec3A) -> f32 {
+    fn pdf(&self, wo: Vec3A, wi: Vec3A) -> f32 {
         if self.smooth() {
             return 0.0;
         }
@@ -171,7 +173,7 @@ impl Dielectric {
     /// `(eta_i / eta_o)^2`: how much `f` of a refraction from `wi`'s side to `wo`'s is
     /// divided by for radiance (1 for a reflection). Weighted by it, the light scattered
     /// from `wo` adds up to at most 1.
-    pub fn radiance_scale(&self, wo: Vec3A, wi: Vec3A) -> f32 {
+    fn radiance_scale(&self, wo: Vec3A, wi: Vec3A) -> f32 {
         if wo.z * wi.z > 0.0 {
             1.0
         } else if wo.z > 0.0 {
@@ -179,6 +181,18 @@ impl Dielectric {
         } else {
             1.0 / (self.eta * self.eta)
         }
+    }
+
+    fn name(&self) -> &'static str {
+        if self.distribution.is_smooth() {
+            "smooth dielectric"
+        } else {
+            "rough dielectric"
+        }
+    }
+
+    fn has_non_delta(&self) -> bool {
+        !self.distribution.is_smooth() && self.eta != 1.0
     }
 }
 

@@ -1,7 +1,7 @@
 //! Lambertian diffuse reflection: light scattered equally in every direction of the side it
 //! arrived on, `f = R / pi`.
 
-use super::{BsdfSample, Lobe, same_hemisphere, to_side_of};
+use super::{BsdfSample, Lobe, Scatter, same_hemisphere, to_side_of};
 use crate::math::sampling::{cosine_hemisphere, cosine_hemisphere_pdf};
 use crate::math::{Color, Vec2, Vec3A};
 use std::f32::consts::FRAC_1_PI;
@@ -13,9 +13,9 @@ pub struct Lambert {
     pub r: Color,
 }
 
-impl Lambert {
+impl Scatter for Lambert {
     /// `R / pi` for directions on the same side, 0 across the surface.
-    pub fn f(&self, wo: Vec3A, wi: Vec3A) -> Color {
+    fn f(&self, wo: Vec3A, wi: Vec3A) -> Color {
         if same_hemisphere(wo, wi) {
             self.r * FRAC_1_PI
         } else {
@@ -24,7 +24,7 @@ impl Lambert {
     }
 
     /// A cosine-weighted direction on `wo`'s side.
-    pub fn sample(&self, wo: Vec3A, u: Vec2) -> Option<BsdfSample> {
+    fn sample(&self, wo: Vec3A, u: Vec2, _uc: f32) -> Option<BsdfSample> {
         if wo.z == 0.0 {
             return None;
         }
@@ -39,12 +39,20 @@ impl Lambert {
     }
 
     /// `|cos theta_i| / pi` on `wo`'s side.
-    pub fn pdf(&self, wo: Vec3A, wi: Vec3A) -> f32 {
+    fn pdf(&self, wo: Vec3A, wi: Vec3A) -> f32 {
         if same_hemisphere(wo, wi) {
             cosine_hemisphere_pdf(wi.z.abs())
         } else {
             0.0
         }
+    }
+
+    fn name(&self) -> &'static str {
+        "lambert"
+    }
+
+    fn has_non_delta(&self) -> bool {
+        true
     }
 }
 

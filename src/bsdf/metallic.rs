@@ -4,7 +4,7 @@
 //! made of the point's base colour and roughness: the metal tinted by the colour, the
 //! dielectric the colour under a clear coat (snell's plastic).
 
-use super::{BsdfSample, Conductor, Plastic};
+use super::{BsdfSample, Conductor, Plastic, Scatter};
 use crate::math::{Color, Vec2, Vec3A};
 
 /// A blend of a metal and a coated diffuse surface.
@@ -19,25 +19,20 @@ pub struct MetallicMix {
     pub metallic: f32,
 }
 
-impl MetallicMix {
+impl Scatter for MetallicMix {
     /// The blend of the parts' values (a smooth metal, a delta, adds nothing).
-    pub fn f(&self, wo: Vec3A, wi: Vec3A) -> Color {
+    fn f(&self, wo: Vec3A, wi: Vec3A) -> Color {
         self.metal.f(wo, wi) * self.metallic + self.dielectric.f(wo, wi) * (1.0 - self.metallic)
-    }
-
-    /// The density of [`MetallicMix::sample`]: each part's, weighted by its chance.
-    pub fn pdf(&self, wo: Vec3A, wi: Vec3A) -> f32 {
-        self.metal.pdf(wo, wi) * self.metallic + self.dielectric.pdf(wo, wi) * (1.0 - self.metallic)
     }
 
     /// The metal with chance `metallic`, else the dielectric, chosen by `uc` (whose
     /// remainder then chooses within the dielectric); then that part sampled. A delta
     /// (the smooth metal's mirror, the smooth coat's) carries its part's weight; any other
     /// direction the blend's value and density, which both parts may reach.
-    pub fn sample(&self, wo: Vec3A, u: Vec2, uc: f32) -> Option<BsdfSample> {
+    fn sample(&self, wo: Vec3A, u: Vec2, uc: f32) -> Option<BsdfSample> {
         let m = self.metallic;
         let (s, weight) = if uc < m {
-            (self.metal.sample(wo, u)?, m)
+            (self.metal.sample(wo, u, uc)?, m)
         } else {
             let uc = ((uc - m) / (1.0 - m)).clamp(0.0, 1.0 - f32::EPSILON / 2.0);
             (self.dielectric.sample(wo, u, uc)?, 1.0 - m)
@@ -45,10 +40,19 @@ impl MetallicMix {
         super::as_mix_sample(s, weight, |wi| self.f(wo, wi), |wi| self.pdf(wo, wi))
     }
 
+    /// The density of [`MetallicMix::sample`]: each part's, weighted by its chance.
+    fn pdf(&self, wo: Vec3A, wi: Vec3A) -> f32 {
+        self.metal.pdf(wo, wi) * self.metallic + self.dielectric.pdf(wo, wi) * (1.0 - self.metallic)
+    }
+
     /// Whether some of its scattering is not a delta: always, as the dielectric's diffuse
     /// base is not.
-    pub fn has_non_delta(&self) -> bool {
+    fn has_non_delta(&self) -> bool {
         true
+    }
+
+    fn name(&self) -> &'static str {
+        "metallic mix"
     }
 }
 

@@ -66,106 +66,53 @@ pub struct BsdfSample {
     pub lobe: Lobe,
 }
 
-/// A BSDF, closed set, dispatched by `match`; one file per variant.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Bsdf {
-    /// Lambertian diffuse reflection.
-    Lambert(Lambert),
-    /// A metal, smooth or rough.
-    Conductor(Conductor),
-    /// Glass, smooth or rough.
-    Dielectric(Dielectric),
-    /// A thin pane of glass.
-    ThinDielectric(ThinDielectric),
-    /// A diffuse base under a dielectric coat.
-    Plastic(Plastic),
-    /// A Phong material's mix of base, mirror and glass.
-    Phong(PhongMix),
-    /// glTF's blend of a metal and a coated diffuse surface.
-    Metallic(MetallicMix),
-}
+crate::closed_set! {
+    /// What every BSDF gives: its value, its sampling and that sampling's density, in the
+    /// local frame. Implemented by each variant in its file; [`Bsdf`] forwards to them.
+    pub trait Scatter {
+        /// `f(wo, wi)`: reflected radiance per unit irradiance, per steradian.
+        fn f(&self, wo: Vec3A, wi: Vec3A) -> Color;
 
-impl Bsdf {
-    /// `f(wo, wi)`: reflected radiance per unit irradiance, per steradian.
-    pub fn f(&self, wo: Vec3A, wi: Vec3A) -> Color {
-        match self {
-            Bsdf::Lambert(b) => b.f(wo, wi),
-            Bsdf::Conductor(b) => b.f(wo, wi),
-            Bsdf::Dielectric(b) => b.f(wo, wi),
-            Bsdf::ThinDielectric(b) => b.f(wo, wi),
-            Bsdf::Plastic(b) => b.f(wo, wi),
-            Bsdf::Phong(b) => b.f(wo, wi),
-            Bsdf::Metallic(b) => b.f(wo, wi),
+        /// Chooses `wi` for `wo` from the uniform point `u` (and `uc`, for choosing a lobe);
+        /// `None` when the sample is absorbed or `wo` lies in the surface.
+        fn sample(&self, wo: Vec3A, u: Vec2, uc: f32) -> Option<BsdfSample>;
+
+        /// The density with which [`Scatter::sample`] chooses `wi` for `wo`, per unit solid
+        /// angle (0 for the directions only a specular lobe reaches).
+        fn pdf(&self, wo: Vec3A, wi: Vec3A) -> f32;
+
+        /// The variant's name, for `snell explain`.
+        fn name(&self) -> &'static str;
+
+        /// Whether some of its scattering is not a delta, so that light sampling can reach it.
+        fn has_non_delta(&self) -> bool;
+
+        /// How much a sample from `wo` to `wi` concentrates radiance by refraction, `(eta_i /
+        /// eta_o)^2` for a refraction into a denser medium (1 for everything else): Russian
+        /// roulette divides the throughput by it, so that light inside glass is not cut short
+        /// for being bright.
+        fn radiance_scale(&self, wo: Vec3A, wi: Vec3A) -> f32 {
+            1.0
         }
     }
 
-    /// Chooses `wi` for `wo` from the uniform point `u` (and `uc`, for choosing a lobe);
-    /// `None` when the sample is absorbed or `wo` lies in the surface.
-    pub fn sample(&self, wo: Vec3A, u: Vec2, uc: f32) -> Option<BsdfSample> {
-        match self {
-            Bsdf::Lambert(b) => b.sample(wo, u),
-            Bsdf::Conductor(b) => b.sample(wo, u),
-            Bsdf::Dielectric(b) => b.sample(wo, u, uc),
-            Bsdf::ThinDielectric(b) => b.sample(wo, u, uc),
-            Bsdf::Plastic(b) => b.sample(wo, u, uc),
-            Bsdf::Phong(b) => b.sample(wo, u, uc),
-            Bsdf::Metallic(b) => b.sample(wo, u, uc),
-        }
-    }
-
-    /// The density with which [`Bsdf::sample`] chooses `wi` for `wo`, per unit solid angle
-    /// (0 for the directions only a specular lobe reaches).
-    pub fn pdf(&self, wo: Vec3A, wi: Vec3A) -> f32 {
-        match self {
-            Bsdf::Lambert(b) => b.pdf(wo, wi),
-            Bsdf::Conductor(b) => b.pdf(wo, wi),
-            Bsdf::Dielectric(b) => b.pdf(wo, wi),
-            Bsdf::ThinDielectric(b) => b.pdf(wo, wi),
-            Bsdf::Plastic(b) => b.pdf(wo, wi),
-            Bsdf::Phong(b) => b.pdf(wo, wi),
-            Bsdf::Metallic(b) => b.pdf(wo, wi),
-        }
-    }
-}
-
-impl Bsdf {
-    /// The variant's name, for `snell explain`.
-    pub fn name(&self) -> &'static str {
-        match self {
-            Bsdf::Lambert(_) => "lambert",
-            Bsdf::Conductor(b) if b.distribution.is_smooth() => "smooth conductor",
-            Bsdf::Conductor(_) => "rough conductor",
-            Bsdf::Dielectric(b) if b.distribution.is_smooth() => "smooth dielectric",
-            Bsdf::Dielectric(_) => "rough dielectric",
-            Bsdf::ThinDielectric(_) => "thin dielectric",
-            Bsdf::Plastic(_) => "plastic",
-            Bsdf::Phong(_) => "phong mix",
-            Bsdf::Metallic(_) => "metallic mix",
-        }
-    }
-
-    /// Whether some of its scattering is not a delta, so that light sampling can reach it.
-    pub fn has_non_delta(&self) -> bool {
-        match self {
-            Bsdf::Lambert(_) | Bsdf::Plastic(_) => true,
-            Bsdf::Conductor(b) => !b.distribution.is_smooth(),
-            Bsdf::Dielectric(b) => !b.distribution.is_smooth() && b.eta != 1.0,
-            Bsdf::ThinDielectric(_) => false,
-            Bsdf::Phong(b) => b.weights[0] > 0.0,
-            Bsdf::Metallic(b) => b.has_non_delta(),
-        }
-    }
-
-    /// How much a sample from `wo` to `wi` concentrates radiance by refraction, `(eta_i /
-    /// eta_o)^2` for a refraction into a denser medium (1 for everything else): Russian
-    /// roulette divides the throughput by it, so that light inside glass is not cut short
-    /// for being bright.
-    pub fn radiance_scale(&self, wo: Vec3A, wi: Vec3A) -> f32 {
-        match self {
-            Bsdf::Dielectric(b) => b.radiance_scale(wo, wi),
-            Bsdf::Phong(b) if b.weights[2] > 0.0 => b.glass.radiance_scale(wo, wi),
-            _ => 1.0,
-        }
+    /// A BSDF: one of a closed set, one file per variant.
+    #[derive(Clone, Copy, Debug, PartialEq)]
+    pub enum Bsdf {
+        /// Lambertian diffuse reflection.
+        Lambert(Lambert),
+        /// A metal, smooth or rough.
+        Conductor(Conductor),
+        /// Glass, smooth or rough.
+        Dielectric(Dielectric),
+        /// A thin pane of glass.
+        ThinDielectric(ThinDielectric),
+        /// A diffuse base under a dielectric coat.
+        Plastic(Plastic),
+        /// A Phong material's mix of base, mirror and glass.
+        Phong(PhongMix),
+        /// glTF's blend of a metal and a coated diffuse surface.
+        Metallic(MetallicMix),
     }
 }
 

@@ -4,7 +4,7 @@
 //! Whitted integrator's split: glass `transparency`, mirror `(1 - transparency) *
 //! reflectivity`, the base the rest.
 
-use super::{BsdfSample, Conductor, Dielectric, Lambert, Plastic};
+use super::{BsdfSample, Conductor, Dielectric, Lambert, Plastic, Scatter};
 use crate::math::{Color, Vec2, Vec3A};
 
 /// The base a Phong material's diffuse and highlight become.
@@ -33,7 +33,7 @@ impl PhongBase {
 
     fn sample(&self, wo: Vec3A, u: Vec2, uc: f32) -> Option<BsdfSample> {
         match self {
-            PhongBase::Lambert(b) => b.sample(wo, u),
+            PhongBase::Lambert(b) => b.sample(wo, u, uc),
             PhongBase::Plastic(b) => b.sample(wo, u, uc),
         }
     }
@@ -74,10 +74,12 @@ impl PhongMix {
             _ => Part::Glass(&self.glass),
         }
     }
+}
 
+impl Scatter for PhongMix {
     /// The weighted sum of the parts' values (the mirror and smooth glass, deltas, add
     /// nothing).
-    pub fn f(&self, wo: Vec3A, wi: Vec3A) -> Color {
+    fn f(&self, wo: Vec3A, wi: Vec3A) -> Color {
         if self.weights[0] > 0.0 {
             self.base.f(wo, wi) * self.weights[0]
         } else {
@@ -85,18 +87,9 @@ impl PhongMix {
         }
     }
 
-    /// The density of [`PhongMix::sample`]: each part's, weighted by its chance.
-    pub fn pdf(&self, wo: Vec3A, wi: Vec3A) -> f32 {
-        if self.weights[0] > 0.0 {
-            self.base.pdf(wo, wi) * self.weights[0]
-        } else {
-            0.0
-        }
-    }
-
     /// A part chosen by its weight with `uc` (whose remainder then chooses within the
     /// part), then sampled.
-    pub fn sample(&self, wo: Vec3A, u: Vec2, uc: f32) -> Option<BsdfSample> {
+    fn sample(&self, wo: Vec3A, u: Vec2, uc: f32) -> Option<BsdfSample> {
         let mut start = 0.0;
         let mut chosen = None;
         for (i, &w) in self.weights.iter().enumerate() {
@@ -116,11 +109,36 @@ impl PhongMix {
         let w = self.weights[i];
         let s = match self.part(i) {
             Part::Base(b) => b.sample(wo, u, uc)?,
-            Part::Mirror(m) => m.sample(wo, u)?,
+            Part::Mirror(m) => m.sample(wo, u, uc)?,
             Part::Glass(g) => g.sample(wo, u, uc)?,
         };
         // Only the base is not a delta: its value and density, weighted.
         super::as_mix_sample(s, w, |wi| self.f(wo, wi), |wi| self.pdf(wo, wi))
+    }
+
+    /// The density of [`PhongMix::sample`]: each part's, weighted by its chance.
+    fn pdf(&self, wo: Vec3A, wi: Vec3A) -> f32 {
+        if self.weights[0] > 0.0 {
+            self.base.pdf(wo, wi) * self.weights[0]
+        } else {
+            0.0
+        }
+    }
+
+    fn name(&self) -> &'static str {
+        "phong mix"
+    }
+
+    fn has_non_delta(&self) -> bool {
+        self.weights[0] > 0.0
+    }
+
+    fn radiance_scale(&self, wo: Vec3A, wi: Vec3A) -> f32 {
+        if self.weights[2] > 0.0 {
+            self.glass.radiance_scale(wo, wi)
+        } else {
+            1.0
+        }
     }
 }
 

@@ -11,7 +11,7 @@
 use super::coat::RoughCoat;
 use super::dielectric::fresnel;
 use super::microfacet::Ggx;
-use super::{BsdfSample, Lobe, front, same_hemisphere, to_side_of};
+use super::{BsdfSample, Lobe, Scatter, front, same_hemisphere, to_side_of};
 use crate::math::sampling::{cosine_hemisphere, cosine_hemisphere_pdf};
 use crate::math::{Color, Vec2, Vec3A};
 
@@ -125,9 +125,11 @@ impl Plastic {
             None => (Color::ZERO, 0.0),
         }
     }
+}
 
+impl Scatter for Plastic {
     /// The base's lobe, and the rough coat's (a smooth coat's reflection is a delta).
-    pub fn f(&self, wo: Vec3A, wi: Vec3A) -> Color {
+    fn f(&self, wo: Vec3A, wi: Vec3A) -> Color {
         if !same_hemisphere(wo, wi) {
             return Color::ZERO;
         }
@@ -140,7 +142,7 @@ impl Plastic {
     }
 
     /// The coat's reflection or the base's, chosen by `uc`.
-    pub fn sample(&self, wo: Vec3A, u: Vec2, uc: f32) -> Option<BsdfSample> {
+    fn sample(&self, wo: Vec3A, u: Vec2, uc: f32) -> Option<BsdfSample> {
         if wo.z == 0.0 {
             return None;
         }
@@ -175,7 +177,7 @@ impl Plastic {
     }
 
     /// The mixture of the base's cosine density and the rough coat's.
-    pub fn pdf(&self, wo: Vec3A, wi: Vec3A) -> f32 {
+    fn pdf(&self, wo: Vec3A, wi: Vec3A) -> f32 {
         if !same_hemisphere(wo, wi) {
             return 0.0;
         }
@@ -186,6 +188,14 @@ impl Plastic {
         } else {
             base + p_coat * self.coat(wo, wi).1
         }
+    }
+
+    fn name(&self) -> &'static str {
+        "plastic"
+    }
+
+    fn has_non_delta(&self) -> bool {
+        true
     }
 }
 

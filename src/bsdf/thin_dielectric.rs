@@ -2,7 +2,7 @@
 //! unbent, the slab's internal reflections summed into the split (`R + T^2 R / (1 - R^2)`).
 
 use super::dielectric::fresnel;
-use super::{BsdfSample, Lobe};
+use super::{BsdfSample, Lobe, Scatter};
 use crate::math::{Color, Vec2, Vec3A};
 
 /// A thin dielectric slab of index `eta` (relative to the air on both sides).
@@ -23,14 +23,16 @@ impl ThinDielectric {
             r
         }
     }
+}
 
+impl Scatter for ThinDielectric {
     /// Only delta lobes: 0 for every pair of directions.
-    pub fn f(&self, _wo: Vec3A, _wi: Vec3A) -> Color {
+    fn f(&self, _wo: Vec3A, _wi: Vec3A) -> Color {
         Color::ZERO
     }
 
     /// The mirror direction or straight through, chosen in proportion by `uc`.
-    pub fn sample(&self, wo: Vec3A, _u: Vec2, uc: f32) -> Option<BsdfSample> {
+    fn sample(&self, wo: Vec3A, _u: Vec2, uc: f32) -> Option<BsdfSample> {
         if wo.z == 0.0 {
             return None;
         }
@@ -49,8 +51,16 @@ impl ThinDielectric {
     }
 
     /// 0: no direction is reached except by a delta lobe.
-    pub fn pdf(&self, _wo: Vec3A, _wi: Vec3A) -> f32 {
+    fn pdf(&self, _wo: Vec3A, _wi: Vec3A) -> f32 {
         0.0
+    }
+
+    fn name(&self) -> &'static str {
+        "thin dielectric"
+    }
+
+    fn has_non_delta(&self) -> bool {
+        false
     }
 }
 

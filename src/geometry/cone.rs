@@ -2,7 +2,7 @@
 //! base's disk), normals and uv.
 
 use super::cylinder::{BOTTOM, SIDE, cap_hit, cap_uv, disk_bounds};
-use super::{ShapeHit, Surface, in_range, solve_quadratic};
+use super::{Intersect, Leaving, ShapeHit, Surface, in_range, solve_quadratic};
 use crate::math::{Aabb, Frame, Ray, Vec2, Vec3A};
 
 /// A finite cone: a disk of radius `radius` at `base`, narrowing to a point at
@@ -32,10 +32,12 @@ impl Cone {
             capped,
         }
     }
+}
 
+impl Intersect for Cone {
     /// Nearest hit on the side (the nappe between base and apex only) or the base cap.
     #[inline]
-    pub fn intersect(&self, ray: &Ray, t_max: f32) -> Option<ShapeHit> {
+    fn intersect(&self, ray: &Ray, t_max: f32) -> Option<ShapeHit> {
         let o = self.frame.to_local(ray.origin - self.base);
         let d = self.frame.to_local(ray.dir);
         let k = self.radius / self.height;
@@ -77,7 +79,8 @@ impl Cone {
 
     /// Normal and uv (as the cylinder's: angle around the axis, `v` from 0 at the apex to 1
     /// at the base; the cap planar).
-    pub fn surface(&self, p: Vec3A, part: u8, want_uv: bool) -> Surface {
+    fn surface(&self, p: Vec3A, hit: &ShapeHit, want_uv: bool) -> Surface {
+        let part = hit.part;
         let l = self.frame.to_local(p - self.base);
         let k = self.radius / self.height;
         let (local_point, local_normal, uv) = if part == SIDE {
@@ -120,17 +123,25 @@ impl Cone {
     }
 
     /// True when `p` is strictly inside the solid cone.
-    pub fn contains(&self, p: Vec3A) -> bool {
+    fn contains(&self, p: Vec3A) -> bool {
         let l = self.frame.to_local(p - self.base);
         let r = self.radius * (1.0 - l.z / self.height);
         l.z > 0.0 && l.z < self.height && l.x * l.x + l.y * l.y < r * r
     }
 
     /// Bounds (base disk and apex).
-    pub fn bounds(&self) -> Aabb {
+    fn bounds(&self) -> Option<Aabb> {
         let mut b = disk_bounds(self.base, self.frame.w, self.radius);
         b.grow(self.base + self.frame.w * self.height);
-        b
+        Some(b)
+    }
+
+    fn leaving(&self) -> Leaving {
+        Leaving::Outside
+    }
+
+    fn kind(&self) -> &'static str {
+        "cone"
     }
 }
 

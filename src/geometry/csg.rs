@@ -9,7 +9,7 @@
 //! for its nearest hit again and again from just past the last one, so two surfaces of one
 //! leaf closer than about 1e-5 of its size along the ray count as one.
 
-use super::{Shape, ShapeHit, Surface};
+use super::{Intersect, Leaving, Shape, ShapeHit, Surface};
 use crate::math::{Aabb, Ray, Transform, Vec3A};
 
 /// How children combine.
@@ -173,9 +173,37 @@ impl Csg {
         (prim >> LEAF_SHIFT) as usize
     }
 
+    fn node_bounds(&self, node: &CsgNode) -> Option<Aabb> {
+        match node {
+            CsgNode::Leaf(i) => {
+                let leaf = &self.leaves[*i];
+                let b = leaf.shape.bounds()?;
+                Some(leaf.transform.as_ref().map_or(b, |t| t.bounds_to_world(&b)))
+            }
+            CsgNode::Op(CsgOp::Union, c) => c
+                .iter()
+                .filter_map(|n| self.node_bounds(n))
+                .reduce(|a, b| a.union(&b)),
+            CsgNode::Op(CsgOp::Intersection, c) => {
+                let mut all = c.iter().map(|n| self.node_bounds(n));
+                let first = all.next()??;
+                all.try_fold(first, |a, b| {
+                    let b = b?;
+                    Some(Aabb::new(
+                        a.min.max(b.min),
+                        a.max.min(b.max).max(a.min.max(b.min)),
+                    ))
+                })
+            }
+            CsgNode::Op(CsgOp::Difference, c) => c.first().and_then(|n| self.node_bounds(n)),
+        }
+    }
+}
+
+impl Intersect for Csg {
     /// The nearest crossing of the result's surface with `0 < t < t_max`: `prim` names the
     /// leaf (see [`Csg::leaf_of`]) and holds the leaf's own, `part` is the leaf's own.
-    pub fn intersect(&self, ray: &Ray, t_max: f32) -> Option<ShapeHit> {
+    fn intersect(&self, ray: &Ray, t_max: f32) -> Option<ShapeHit> {
         let mut inside: Vec<bool> = self.leaves.iter().map(|l| l.contains(ray.origin)).collect();
         let mut events: Vec<(f32, usize, ShapeHit)> = vec![];
         let mut one = vec![];
@@ -203,7 +231,7 @@ impl Csg {
     }
 
     /// The surface at a hit: the leaf's, facing out of the result.
-    pub fn surface(&self, p: Vec3A, hit: &ShapeHit, want_uv: bool) -> Surface {
+    fn surface(&self, p: Vec3A, hit: &ShapeHit, want_uv: bool) -> Surface {
         let leaf = &self.leaves[Self::leaf_of(hit.prim)];
         let lp = leaf.transform.as_ref().map_or(p, |t| t.point_to_object(p));
         let own = ShapeHit {
@@ -226,42 +254,26 @@ impl Csg {
     }
 
     /// Whether `p` is strictly inside the result.
-    pub fn contains(&self, p: Vec3A) -> bool {
+    fn contains(&self, p: Vec3A) -> bool {
         let inside: Vec<bool> = self.leaves.iter().map(|l| l.contains(p)).collect();
         Self::eval(&self.root, &inside)
     }
 
     /// Bounds: of a union, its children's together; of an intersection, where they overlap;
     /// of a difference, its first child's.
-    pub fn bounds(&self) -> Aabb {
-        self.node_bounds(&self.root)
-            .unwrap_or_else(|| Aabb::new(Vec3A::ZERO, Vec3A::ZERO))
+    fn bounds(&self) -> Option<Aabb> {
+        Some(
+            self.node_bounds(&self.root)
+                .unwrap_or_else(|| Aabb::new(Vec3A::ZERO, Vec3A::ZERO)),
+        )
     }
 
-    fn node_bounds(&self, node: &CsgNode) -> Option<Aabb> {
-        match node {
-            CsgNode::Leaf(i) => {
-                let leaf = &self.leaves[*i];
-                let b = leaf.shape.bounds()?;
-                Some(leaf.transform.as_ref().map_or(b, |t| t.bounds_to_world(&b)))
-            }
-            CsgNode::Op(CsgOp::Union, c) => c
-                .iter()
-                .filter_map(|n| self.node_bounds(n))
-                .reduce(|a, b| a.union(&b)),
-            CsgNode::Op(CsgOp::Intersection, c) => {
-                let mut all = c.iter().map(|n| self.node_bounds(n));
-                let first = all.next()??;
-                all.try_fold(first, |a, b| {
-                    let b = b?;
-                    Some(Aabb::new(
-                        a.min.max(b.min),
-                        a.max.min(b.max).max(a.min.max(b.min)),
-                    ))
-                })
-            }
-            CsgNode::Op(CsgOp::Difference, c) => c.first().and_then(|n| self.node_bounds(n)),
-        }
+    fn leaving(&self) -> Leaving {
+        Leaving::MayReturn
+    }
+
+    fn kind(&self) -> &'static str {
+        "csg"
     }
 }
 

@@ -1,7 +1,7 @@
 //! An axis-aligned box in object space (a transform turns it): its hits by the slab test,
 //! the face hit, normals and uv.
 
-use super::{ShapeHit, Surface};
+use super::{Intersect, Leaving, ShapeHit, Surface};
 use crate::math::{Aabb, Ray, Vec2, Vec3A};
 
 /// A box between two corners, axis-aligned in object space (rotate it with a transform).
@@ -13,11 +13,11 @@ pub struct Cuboid {
     pub max: Vec3A,
 }
 
-impl Cuboid {
+impl Intersect for Cuboid {
     /// Slab test. Parts are faces: `2 * axis` for the `min` face, `2 * axis + 1` for `max`.
     /// A ray from inside hits the face it leaves through.
     #[inline]
-    pub fn intersect(&self, ray: &Ray, t_max: f32) -> Option<ShapeHit> {
+    fn intersect(&self, ray: &Ray, t_max: f32) -> Option<ShapeHit> {
         let mut near = f32::NEG_INFINITY;
         let mut far = f32::INFINITY;
         let (mut near_part, mut far_part) = (0u8, 0u8);
@@ -71,7 +71,8 @@ impl Cuboid {
 
     /// Face normal and uv across the face, 0 to 1, oriented so an image appears upright on
     /// each side face seen from outside.
-    pub fn surface(&self, p: Vec3A, part: u8) -> Surface {
+    fn surface(&self, p: Vec3A, hit: &ShapeHit, _want_uv: bool) -> Surface {
+        let part = hit.part;
         let axis = (part / 2) as usize;
         let positive = part % 2 == 1;
         let mut point = p.clamp(self.min, self.max);
@@ -96,9 +97,21 @@ impl Cuboid {
         Surface { point, normal, uv }
     }
 
-    /// Bounds.
-    pub fn bounds(&self) -> Aabb {
-        Aabb::new(self.min, self.max)
+    /// The box itself, object space (it is axis-aligned there).
+    fn bounds(&self) -> Option<Aabb> {
+        Some(Aabb::new(self.min, self.max))
+    }
+
+    fn contains(&self, p: Vec3A) -> bool {
+        p.cmpgt(self.min).all() && p.cmplt(self.max).all()
+    }
+
+    fn leaving(&self) -> Leaving {
+        Leaving::Outside
+    }
+
+    fn kind(&self) -> &'static str {
+        "box"
     }
 }
 

@@ -1,7 +1,7 @@
 //! A finite cylinder about any axis, capped or open: its hits (a quadratic, and the caps'
 //! disks), normals and uv; the cap helpers the cone and disk share.
 
-use super::{ShapeHit, Surface, in_range, nearer, solve_quadratic};
+use super::{Intersect, Leaving, ShapeHit, Surface, in_range, nearer, solve_quadratic};
 use crate::math::{Aabb, Frame, Ray, Vec2, Vec3A};
 use std::f32::consts::TAU;
 
@@ -37,10 +37,12 @@ impl Cylinder {
             capped,
         }
     }
+}
 
+impl Intersect for Cylinder {
     /// Nearest hit among the side (both roots tried against the height) and the caps.
     #[inline]
-    pub fn intersect(&self, ray: &Ray, t_max: f32) -> Option<ShapeHit> {
+    fn intersect(&self, ray: &Ray, t_max: f32) -> Option<ShapeHit> {
         let o = self.frame.to_local(ray.origin - self.base);
         let d = self.frame.to_local(ray.dir);
         let r2 = self.radius * self.radius;
@@ -71,7 +73,8 @@ impl Cylinder {
     /// Normal (radial on the side, along the axis on the caps) and uv: on the side `u` is the
     /// angle around the axis from 0 to 1 and `v` runs from 0 at the top to 1 at the base; on
     /// the caps uv are planar, centred at (0.5, 0.5), spanning the diameter.
-    pub fn surface(&self, p: Vec3A, part: u8, want_uv: bool) -> Surface {
+    fn surface(&self, p: Vec3A, hit: &ShapeHit, want_uv: bool) -> Surface {
+        let part = hit.part;
         let l = self.frame.to_local(p - self.base);
         let (local_point, local_normal, uv) = match part {
             SIDE => {
@@ -104,18 +107,28 @@ impl Cylinder {
     }
 
     /// True when `p` is strictly inside (capped or not, the solid is the same).
-    pub fn contains(&self, p: Vec3A) -> bool {
+    fn contains(&self, p: Vec3A) -> bool {
         let l = self.frame.to_local(p - self.base);
         l.z > 0.0 && l.z < self.height && l.x * l.x + l.y * l.y < self.radius * self.radius
     }
 
     /// Bounds (of the two end disks).
-    pub fn bounds(&self) -> Aabb {
-        disk_bounds(self.base, self.frame.w, self.radius).union(&disk_bounds(
-            self.base + self.frame.w * self.height,
-            self.frame.w,
-            self.radius,
-        ))
+    fn bounds(&self) -> Option<Aabb> {
+        Some(
+            disk_bounds(self.base, self.frame.w, self.radius).union(&disk_bounds(
+                self.base + self.frame.w * self.height,
+                self.frame.w,
+                self.radius,
+            )),
+        )
+    }
+
+    fn leaving(&self) -> Leaving {
+        Leaving::Outside
+    }
+
+    fn kind(&self) -> &'static str {
+        "cylinder"
     }
 }
 
@@ -242,7 +255,7 @@ mod tests {
     #[test]
     fn side_uv_matches_the_sphere_longitude() {
         let c = Cylinder::new(Vec3A::ZERO, Vec3A::Y, 1.0, 2.0, true);
-        let u = |p: Vec3A| c.surface(p, SIDE, true).uv;
+        let u = |p: Vec3A| c.surface(p, &on_part(SIDE), true).uv;
         assert!(
             (u(Vec3A::new(0.0, 1.0, 1.0)).x - 0.5).abs() < 1e-6,
             "+z is the centre"

@@ -1,13 +1,13 @@
 //! A flat disk: its hits, normal and uv, and its points sampled by area for area lights.
 
 use super::cylinder::disk_bounds;
-use super::{ShapeHit, Surface, in_range};
+use super::{Intersect, Leaving, ShapeHit, Surface, in_range};
 use crate::math::{Aabb, Frame, Ray, Vec2, Vec3A};
 
 /// A flat disk of radius `radius` around `center`, facing `frame.w`.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Disk {
-    /// Centre.
+    /// Centre, in object space.
     pub center: Vec3A,
     /// Frame whose `w` is the unit normal.
     pub frame: Frame,
@@ -24,10 +24,12 @@ impl Disk {
             radius,
         }
     }
+}
 
+impl Intersect for Disk {
     /// Hit in `(0, t_max)` within the radius; parallel rays miss.
     #[inline]
-    pub fn intersect(&self, ray: &Ray, t_max: f32) -> Option<ShapeHit> {
+    fn intersect(&self, ray: &Ray, t_max: f32) -> Option<ShapeHit> {
         let n = self.frame.w;
         let denom = ray.dir.dot(n);
         if denom == 0.0 {
@@ -39,7 +41,7 @@ impl Disk {
     }
 
     /// Normal and planar uv centred at (0.5, 0.5), spanning the diameter.
-    pub fn surface(&self, p: Vec3A) -> Surface {
+    fn surface(&self, p: Vec3A, _hit: &ShapeHit, _want_uv: bool) -> Surface {
         let l = self.frame.to_local(p - self.center);
         Surface {
             point: self.center + self.frame.to_world(Vec3A::new(l.x, l.y, 0.0)),
@@ -51,9 +53,18 @@ impl Disk {
         }
     }
 
-    /// Bounds.
-    pub fn bounds(&self) -> Aabb {
-        disk_bounds(self.center, self.frame.w, self.radius)
+    /// The smallest box around the disk, object space: per axis, the radius times the
+    /// sine of the angle between that axis and the normal.
+    fn bounds(&self) -> Option<Aabb> {
+        Some(disk_bounds(self.center, self.frame.w, self.radius))
+    }
+
+    fn leaving(&self) -> Leaving {
+        Leaving::EitherSide
+    }
+
+    fn kind(&self) -> &'static str {
+        "disk"
     }
 }
 
@@ -93,7 +104,7 @@ mod tests {
     #[test]
     fn tilted_disk_bounds_are_tight() {
         let d = Disk::new(Vec3A::ZERO, Vec3A::Y, 2.0);
-        let b = d.bounds();
+        let b = d.bounds().unwrap();
         assert_vec_close(b.min, Vec3A::new(-2.0, 0.0, -2.0), 1e-6);
         assert_vec_close(b.max, Vec3A::new(2.0, 0.0, 2.0), 1e-6);
     }

@@ -1,5 +1,5 @@
-//! Shapes, each in its own object space: one file per shape, dispatched by `match` over the
-//! closed set [`Shape`]. Every shape returns the nearest hit in `(0, t_max)`, so a ray that
+//! Shapes, each in its own object space: one file per shape implementing [`Intersect`],
+//! forwarded to by the closed set [`Shape`]. Every shape returns the nearest hit in `(0, t_max)`, so a ray that
 //! starts inside a solid finds its far side, and accepts rays whose direction is not unit
 //! length (rays carried in by a transform).
 
@@ -100,60 +100,106 @@ pub enum Leaving {
     MayReturn,
 }
 
-/// Every kind of shape snell can intersect.
-#[derive(Clone, Debug, PartialEq)]
-pub enum Shape {
-    /// A sphere.
-    Sphere(Sphere),
-    /// An infinite plane.
-    Plane(Plane),
-    /// A parallelogram (rectangle when its edges are perpendicular).
-    Rect(Rect),
-    /// An axis-aligned box in object space.
-    Cuboid(Cuboid),
-    /// A finite cylinder, capped or open.
-    Cylinder(Cylinder),
-    /// A finite cone, capped or open at its base.
-    Cone(Cone),
-    /// A ring torus.
-    Torus(Torus),
-    /// A flat disk.
-    Disk(Disk),
-    /// A single triangle.
-    Triangle(Triangle),
-    /// A triangle mesh, shared by every object that places it.
-    Mesh(std::sync::Arc<Mesh>),
-    /// A union, intersection or difference of solids, shared like a mesh.
-    Csg(std::sync::Arc<Csg>),
+crate::closed_set! {
+    /// What every shape gives, in its own object space. Implemented by each shape in its
+    /// file; [`Shape`] forwards to them.
+    pub trait Intersect {
+        /// Nearest hit with `0 < t < t_max`.
+        fn intersect(&self, ray: &Ray, t_max: f32) -> Option<ShapeHit>;
+
+        /// Whether anything is hit with `0 < t < t_max` (a mesh stops at the first triangle).
+        fn occluded(&self, ray: &Ray, t_max: f32) -> bool {
+            self.intersect(ray, t_max).is_some()
+        }
+
+        /// Surface details for `hit`, at object-space point `p`. The uv costs trigonometry on
+        /// round shapes, so it is only worked out when `want_uv` is set (it is zero
+        /// otherwise).
+        fn surface(&self, p: Vec3A, hit: &ShapeHit, want_uv: bool) -> Surface;
+
+        /// How the shape's uv changes from the hit `hit` at `p` to the point `dp` away on its
+        /// tangent plane (the patch a pixel sees; zero unless `want_uv`), and the unit normal
+        /// there (the shading normal, for meshes). By default the uv is differenced forward
+        /// and backward ([`differenced`]).
+        fn differential(&self, p: Vec3A, hit: &ShapeHit, dp: Vec3A, want_uv: bool) -> (Vec2, Vec3A) {
+            differenced(self, p, hit, dp, want_uv)
+        }
+
+        /// Object-space bounds; `None` for unbounded shapes (planes).
+        fn bounds(&self) -> Option<Aabb>;
+
+        /// True when the object-space point lies strictly inside a closed solid. Open and
+        /// flat shapes contain nothing.
+        fn contains(&self, p: Vec3A) -> bool {
+            false
+        }
+
+        /// Which rays leaving this shape's surface cannot meet it again. An affine transform
+        /// keeps flat shapes flat and convex ones convex, and the outward normal outward, so
+        /// this holds of a placed object too.
+        fn leaving(&self) -> Leaving;
+
+        /// Short lower-case name of the shape, as written in scene files.
+        fn kind(&self) -> &'static str;
+    }
+
+    /// Every kind of shape snell can intersect: one of a closed set, one file per shape.
+    #[derive(Clone, Debug, PartialEq)]
+    pub enum Shape {
+        /// A sphere.
+        Sphere(Sphere),
+        /// An infinite plane.
+        Plane(Plane),
+        /// A parallelogram (rectangle when its edges are perpendicular).
+        Rect(Rect),
+        /// An axis-aligned box in object space.
+        Cuboid(Cuboid),
+        /// A finite cylinder, capped or open.
+        Cylinder(Cylinder),
+        /// A finite cone, capped or open at its base.
+        Cone(Cone),
+        /// A ring torus.
+        Torus(Torus),
+        /// A flat disk.
+        Disk(Disk),
+        /// A single triangle.
+        Triangle(Triangle),
+        /// A triangle mesh, shared by every object that places it.
+        Mesh(std::sync::Arc<Mesh>),
+        /// A union, intersection or difference of solids, shared like a mesh.
+        Csg(std::sync::Arc<Csg>),
+    }
+}
+
+/// [`Intersect::differential`] by differencing: the surface a step `dp` ahead gives the
+/// normal; with `want_uv`, the uv is differenced forward and backward and the smaller of
+/// each kept ([`seamless`]), so that a step across a seam (a sphere's `u` going from 1 to 0)
+/// does not count as a jump.
+pub fn differenced(
+    shape: &(impl Intersect + ?Sized),
+    p: Vec3A,
+    hit: &ShapeHit,
+    dp: Vec3A,
+    want_uv: bool,
+) -> (Vec2, Vec3A) {
+    let ahead = shape.surface(p + dp, hit, want_uv);
+    if !want_uv {
+        return (Vec2::ZERO, ahead.normal);
+    }
+    let here = shape.surface(p, hit, true);
+    let behind = shape.surface(p - dp, hit, true);
+    (
+        seamless(ahead.uv - here.uv, here.uv - behind.uv),
+        ahead.normal,
+    )
 }
 
 impl Shape {
-    /// Nearest hit with `0 < t < t_max`.
-    #[inline]
-    pub fn intersect(&self, ray: &Ray, t_max: f32) -> Option<ShapeHit> {
-        match self {
-            Shape::Sphere(s) => s.intersect(ray, t_max),
-            Shape::Plane(s) => s.intersect(ray, t_max),
-            Shape::Rect(s) => s.intersect(ray, t_max),
-            Shape::Cuboid(s) => s.intersect(ray, t_max),
-            Shape::Cylinder(s) => s.intersect(ray, t_max),
-            Shape::Cone(s) => s.intersect(ray, t_max),
-            Shape::Torus(s) => s.intersect(ray, t_max),
-            Shape::Csg(s) => s.intersect(ray, t_max),
-            Shape::Disk(s) => s.intersect(ray, t_max),
-            Shape::Triangle(s) => s.intersect(ray, t_max),
-            Shape::Mesh(s) => s.intersect(ray, t_max),
-        }
-    }
-
-    /// [`Shape::intersect`] as the object walk calls it, inlined there: a mesh through
-    /// [`Shape::intersect`], every other shape through [`Shape::intersect_analytic`].
-    ///
-    /// [`Shape::intersect`] has the mesh walk inlined into it, and with it the walk's
-    /// prologue: five registers saved and a 1.9 KB stack frame aligned to 32 bytes, on
-    /// every call. Every sphere of the seed scene paid it (3 % of its instructions). Marking
-    /// the mesh's own `intersect` not to be inlined instead made the walk compile to 50 more
-    /// instructions a ray through the bunny; this leaves the walk's code as it was.
+    /// [`Intersect::intersect`] as the object walk calls it, inlined there: a mesh through
+    /// [`Intersect::intersect`], every other shape through [`Shape::intersect_analytic`].
+    /// The mesh's walk, inlined into [`Intersect::intersect`], brings its prologue (saved
+    /// registers and a large aligned stack frame) to every call; this keeps it off the
+    /// analytic shapes' path.
     #[inline(always)]
     pub(crate) fn intersect_walk(&self, ray: &Ray, t_max: f32) -> Option<ShapeHit> {
         match self {
@@ -162,7 +208,7 @@ impl Shape {
         }
     }
 
-    /// [`Shape::occluded`] as the object walk calls it (see [`Shape::intersect_walk`]).
+    /// [`Intersect::occluded`] as the object walk calls it (see [`Shape::intersect_walk`]).
     #[inline(always)]
     pub(crate) fn occluded_walk(&self, ray: &Ray, t_max: f32) -> bool {
         match self {
@@ -171,149 +217,13 @@ impl Shape {
         }
     }
 
-    /// [`Shape::intersect`] of every shape but a mesh (`None` for a mesh): a jump to the
-    /// shape's test, with no frame of its own to set up. Its arms repeat
-    /// [`Shape::intersect`]'s rather than that calling this for shapes other than meshes:
-    /// so changed, `Shape::intersect` compiled the mesh walk to 47 more instructions a ray.
+    /// [`Intersect::intersect`] of every shape but a mesh (`None` for a mesh): a jump to the
+    /// shape's test, with no frame of its own to set up.
     #[inline(never)]
     fn intersect_analytic(&self, ray: &Ray, t_max: f32) -> Option<ShapeHit> {
         match self {
-            Shape::Sphere(s) => s.intersect(ray, t_max),
-            Shape::Plane(s) => s.intersect(ray, t_max),
-            Shape::Rect(s) => s.intersect(ray, t_max),
-            Shape::Cuboid(s) => s.intersect(ray, t_max),
-            Shape::Cylinder(s) => s.intersect(ray, t_max),
-            Shape::Cone(s) => s.intersect(ray, t_max),
-            Shape::Torus(s) => s.intersect(ray, t_max),
-            Shape::Csg(s) => s.intersect(ray, t_max),
-            Shape::Disk(s) => s.intersect(ray, t_max),
-            Shape::Triangle(s) => s.intersect(ray, t_max),
             Shape::Mesh(_) => None,
-        }
-    }
-
-    /// Whether anything is hit with `0 < t < t_max` (meshes stop at the first triangle).
-    #[inline]
-    pub fn occluded(&self, ray: &Ray, t_max: f32) -> bool {
-        match self {
-            Shape::Mesh(s) => s.occluded(ray, t_max),
-            _ => self.intersect(ray, t_max).is_some(),
-        }
-    }
-
-    /// Surface details for `hit`, at object-space point `p`. The uv costs trigonometry on
-    /// round shapes, so it is only worked out when `want_uv` is set (it is zero otherwise).
-    pub fn surface(&self, p: Vec3A, hit: &ShapeHit, want_uv: bool) -> Surface {
-        let part = hit.part;
-        match self {
-            Shape::Sphere(s) => s.surface(p, want_uv),
-            Shape::Plane(s) => s.surface(p),
-            Shape::Rect(s) => s.surface(p),
-            Shape::Cuboid(s) => s.surface(p, part),
-            Shape::Cylinder(s) => s.surface(p, part, want_uv),
-            Shape::Cone(s) => s.surface(p, part, want_uv),
-            Shape::Torus(s) => s.surface(p, want_uv),
-            Shape::Csg(s) => s.surface(p, hit, want_uv),
-            Shape::Disk(s) => s.surface(p),
-            Shape::Triangle(s) => s.surface(p),
-            Shape::Mesh(s) => s.surface(hit),
-        }
-    }
-
-    /// How the shape's uv changes from the hit `hit` at `p` to the point `dp` away on its
-    /// tangent plane (the patch a pixel sees; zero unless `want_uv`), and the unit normal
-    /// there (the shading normal, for meshes; a sphere's to first order). Analytic shapes difference their uv forward
-    /// and backward and keep the smaller of each ([`seamless`]), so that a step across a
-    /// seam (a sphere's `u` going from 1 to 0) does not count as a jump.
-    pub fn differential(
-        &self,
-        p: Vec3A,
-        hit: &ShapeHit,
-        dp: Vec3A,
-        want_uv: bool,
-    ) -> (Vec2, Vec3A) {
-        match self {
-            Shape::Mesh(m) => return m.differential(p, hit, dp),
-            // A sphere's unit normal changes by the step over the radius (to first order,
-            // for a step in the tangent plane): no square root for a mirror ball's
-            // reflected differentials.
-            Shape::Sphere(s) if !want_uv => {
-                return (Vec2::ZERO, (p + dp - s.center) / s.radius);
-            }
-            _ => {}
-        }
-        let ahead = self.surface(p + dp, hit, want_uv);
-        if !want_uv {
-            return (Vec2::ZERO, ahead.normal);
-        }
-        let here = self.surface(p, hit, true);
-        let behind = self.surface(p - dp, hit, true);
-        (
-            seamless(ahead.uv - here.uv, here.uv - behind.uv),
-            ahead.normal,
-        )
-    }
-
-    /// Object-space bounds; `None` for unbounded shapes (planes).
-    pub fn bounds(&self) -> Option<Aabb> {
-        match self {
-            Shape::Sphere(s) => Some(s.bounds()),
-            Shape::Plane(_) => None,
-            Shape::Rect(s) => Some(s.bounds()),
-            Shape::Cuboid(s) => Some(s.bounds()),
-            Shape::Cylinder(s) => Some(s.bounds()),
-            Shape::Cone(s) => Some(s.bounds()),
-            Shape::Torus(s) => Some(s.bounds()),
-            Shape::Csg(s) => Some(s.bounds()),
-            Shape::Disk(s) => Some(s.bounds()),
-            Shape::Triangle(s) => Some(s.bounds()),
-            Shape::Mesh(s) => Some(s.bounds()),
-        }
-    }
-
-    /// True when the object-space point lies strictly inside a closed solid. Open and flat
-    /// shapes contain nothing.
-    pub fn contains(&self, p: Vec3A) -> bool {
-        match self {
-            Shape::Sphere(s) => (p - s.center).length_squared() < s.radius * s.radius,
-            Shape::Cuboid(s) => p.cmpgt(s.min).all() && p.cmplt(s.max).all(),
-            Shape::Cylinder(s) => s.contains(p),
-            Shape::Cone(s) => s.contains(p),
-            Shape::Torus(s) => s.contains(p),
-            Shape::Csg(s) => s.contains(p),
-            _ => false,
-        }
-    }
-
-    /// Which rays leaving this shape's surface cannot meet it again. An affine transform
-    /// keeps flat shapes flat and convex ones convex, and the outward normal outward, so this
-    /// holds of a placed object too.
-    pub fn leaving(&self) -> Leaving {
-        match self {
-            Shape::Plane(_) | Shape::Rect(_) | Shape::Disk(_) | Shape::Triangle(_) => {
-                Leaving::EitherSide
-            }
-            Shape::Sphere(_) | Shape::Cuboid(_) | Shape::Cylinder(_) | Shape::Cone(_) => {
-                Leaving::Outside
-            }
-            Shape::Mesh(_) | Shape::Torus(_) | Shape::Csg(_) => Leaving::MayReturn,
-        }
-    }
-
-    /// Short lower-case name of the shape, as written in scene files.
-    pub fn kind(&self) -> &'static str {
-        match self {
-            Shape::Sphere(_) => "sphere",
-            Shape::Plane(_) => "plane",
-            Shape::Rect(_) => "rectangle",
-            Shape::Cuboid(_) => "box",
-            Shape::Cylinder(_) => "cylinder",
-            Shape::Cone(_) => "cone",
-            Shape::Torus(_) => "torus",
-            Shape::Csg(_) => "csg",
-            Shape::Disk(_) => "disk",
-            Shape::Triangle(_) => "triangle",
-            Shape::Mesh(_) => "mesh",
+            _ => self.intersect(ray, t_max),
         }
     }
 }
@@ -374,6 +284,16 @@ pub(crate) fn in_range(t: f32, t_max: f32, part: u8) -> Option<ShapeHit> {
 #[cfg(test)]
 pub(crate) mod test_util {
     use super::*;
+
+    /// A hit on part `part` of a shape, for asking its surface there.
+    pub fn on_part(part: u8) -> ShapeHit {
+        ShapeHit {
+            t: 1.0,
+            part,
+            prim: 0,
+            bary: Vec2::ZERO,
+        }
+    }
 
     /// Asserts `a` and `b` are within `tol` of each other, component-wise.
     pub fn assert_vec_close(a: Vec3A, b: Vec3A, tol: f32) {

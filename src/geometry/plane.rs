@@ -1,7 +1,7 @@
 //! An infinite plane: unbounded, so the BVH keeps it apart and tests it on every ray.
 
-use super::{ShapeHit, Surface, in_range};
-use crate::math::{Frame, Ray, Vec2, Vec3A};
+use super::{Intersect, Leaving, ShapeHit, Surface, in_range};
+use crate::math::{Aabb, Frame, Ray, Vec2, Vec3A};
 
 /// An infinite plane through `point` with unit normal `normal`. Unbounded, so it stays out
 /// of the acceleration structure.
@@ -29,10 +29,12 @@ impl Plane {
             axes: Frame { u, v, w: n },
         }
     }
+}
 
+impl Intersect for Plane {
     /// Hit in `(0, t_max)`; a ray parallel to the plane misses it.
     #[inline]
-    pub fn intersect(&self, ray: &Ray, t_max: f32) -> Option<ShapeHit> {
+    fn intersect(&self, ray: &Ray, t_max: f32) -> Option<ShapeHit> {
         let denom = ray.dir.dot(self.normal);
         if denom == 0.0 {
             return None;
@@ -42,7 +44,7 @@ impl Plane {
     }
 
     /// Normal and planar uv in scene units from `point`.
-    pub fn surface(&self, p: Vec3A) -> Surface {
+    fn surface(&self, p: Vec3A, _hit: &ShapeHit, _want_uv: bool) -> Surface {
         let rel = p - self.point;
         let in_plane = rel - self.normal * rel.dot(self.normal);
         Surface {
@@ -50,6 +52,18 @@ impl Plane {
             normal: self.normal,
             uv: Vec2::new(in_plane.dot(self.axes.u), in_plane.dot(self.axes.v)),
         }
+    }
+
+    fn bounds(&self) -> Option<Aabb> {
+        None
+    }
+
+    fn leaving(&self) -> Leaving {
+        Leaving::EitherSide
+    }
+
+    fn kind(&self) -> &'static str {
+        "plane"
     }
 }
 

@@ -1,7 +1,7 @@
 //! A parallelogram (a rectangle with perpendicular edges): its hits, one ray at a time and
 //! eight at once, its uv, and its points sampled by area for area lights.
 
-use super::{ShapeHit, Surface, in_range};
+use super::{Intersect, Leaving, ShapeHit, Surface, in_range};
 use crate::math::{Aabb, LANES, Ray, RayLanes, Vec2, Vec3A};
 
 /// A flat parallelogram: `corner + a * edge_u + b * edge_v` for `a, b` in `[0, 1]`. With
@@ -31,19 +31,6 @@ impl Rect {
             normal: n / nn.sqrt(),
             w: n / nn,
         })
-    }
-
-    /// Hit in `(0, t_max)` inside the parallelogram (edges included).
-    #[inline]
-    pub fn intersect(&self, ray: &Ray, t_max: f32) -> Option<ShapeHit> {
-        let denom = ray.dir.dot(self.normal);
-        if denom == 0.0 {
-            return None;
-        }
-        let t = (self.corner - ray.origin).dot(self.normal) / denom;
-        let hit = in_range(t, t_max, 0)?;
-        let (a, b) = self.coords(ray.at(t));
-        ((0.0..=1.0).contains(&a) && (0.0..=1.0).contains(&b)).then_some(hit)
     }
 
     /// [`Rect::intersect`] of every ray of a packet at once, each below its own `t_max`: the
@@ -82,11 +69,26 @@ impl Rect {
             self.w.dot(self.edge_u.cross(rel)),
         )
     }
+}
+
+impl Intersect for Rect {
+    /// Hit in `(0, t_max)` inside the parallelogram (edges included).
+    #[inline]
+    fn intersect(&self, ray: &Ray, t_max: f32) -> Option<ShapeHit> {
+        let denom = ray.dir.dot(self.normal);
+        if denom == 0.0 {
+            return None;
+        }
+        let t = (self.corner - ray.origin).dot(self.normal) / denom;
+        let hit = in_range(t, t_max, 0)?;
+        let (a, b) = self.coords(ray.at(t));
+        ((0.0..=1.0).contains(&a) && (0.0..=1.0).contains(&b)).then_some(hit)
+    }
 
     /// Normal and uv: `u` from 0 to 1 along `edge_u`, `v` from 1 at the corner to 0 at the
     /// far end of `edge_v`. Seen from the front, with `edge_u` to the right and `edge_v` up,
     /// an image appears upright with the corner at its bottom-left.
-    pub fn surface(&self, p: Vec3A) -> Surface {
+    fn surface(&self, p: Vec3A, _hit: &ShapeHit, _want_uv: bool) -> Surface {
         let (a, b) = self.coords(p);
         Surface {
             point: self.corner + a * self.edge_u + b * self.edge_v,
@@ -95,12 +97,20 @@ impl Rect {
         }
     }
 
-    /// Bounds.
-    pub fn bounds(&self) -> Aabb {
+    /// The box around the parallelogram's four corners, object space.
+    fn bounds(&self) -> Option<Aabb> {
         let mut b = Aabb::new(self.corner, self.corner + self.edge_u);
         b.grow(self.corner + self.edge_v);
         b.grow(self.corner + self.edge_u + self.edge_v);
-        b
+        Some(b)
+    }
+
+    fn leaving(&self) -> Leaving {
+        Leaving::EitherSide
+    }
+
+    fn kind(&self) -> &'static str {
+        "rectangle"
     }
 }
 

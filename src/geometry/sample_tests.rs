@@ -3,7 +3,9 @@
 //! solid angle, by the chi-square test of src/math/chi2.rs; and the densities integrate to
 //! the shape's area.
 
-use super::{Disk, Rect, ShapeHit, Sphere, SurfaceSample, Triangle, area_to_solid_angle};
+use super::{
+    Disk, Intersect, Rect, ShapeHit, Sphere, SurfaceSample, Triangle, area_to_solid_angle,
+};
 use crate::math::chi2::{SphereBins, chi2_sphere};
 use crate::math::{Ray, Vec2, Vec3A};
 

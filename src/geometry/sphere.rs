@@ -1,7 +1,7 @@
 //! A sphere: its hits (the quadratic without the textbook's cancellation), one ray at a time
 //! and eight at once, normal and uv, and its points sampled by solid angle for area lights.
 
-use super::{ShapeHit, Surface, equirectangular_uv, in_range};
+use super::{Intersect, Leaving, ShapeHit, Surface, equirectangular_uv, in_range};
 use crate::math::{Aabb, LANES, Ray, RayLanes, Vec2, Vec3A};
 
 /// A sphere given by its centre and radius.
@@ -14,36 +14,6 @@ pub struct Sphere {
 }
 
 impl Sphere {
-    /// Nearest hit in `(0, t_max)`: the near root, or the far root when the ray starts
-    /// inside (the near root is then behind it).
-    #[inline]
-    pub fn intersect(&self, ray: &Ray, t_max: f32) -> Option<ShapeHit> {
-        let f = ray.origin - self.center;
-        let a = ray.dir.length_squared();
-        let half_b = f.dot(ray.dir);
-        let c = f.length_squared() - self.radius * self.radius;
-        if c > 0.0 && half_b > 0.0 {
-            // Starts outside and points away: both roots are behind.
-            return None;
-        }
-        // Discriminant as a * (r^2 - |f - (f.d / d.d) d|^2): the distance from the centre to
-        // the line is computed directly, which stays accurate for small or distant spheres
-        // (Haines et al., "Precision Improvements for Ray/Sphere Intersection", 2019).
-        let l = f - ray.dir * (half_b / a);
-        let disc = a * (self.radius * self.radius - l.length_squared());
-        if disc < 0.0 || a == 0.0 {
-            return None;
-        }
-        let q = -(half_b + disc.sqrt().copysign(half_b));
-        let (t0, t1) = if q == 0.0 {
-            (0.0, 0.0)
-        } else {
-            let (x, y) = (c / q, q / a);
-            if x < y { (x, y) } else { (y, x) }
-        };
-        in_range(t0, t_max, 0).or_else(|| in_range(t1, t_max, 0))
-    }
-
     /// [`Sphere::intersect`] of every ray of a packet at once, each below its own `t_max`:
     /// the distances of the hits, infinite for a miss. The same operations in the same
     /// order, lane by lane, so the same distances to the bit (a test checks it); written
@@ -86,9 +56,41 @@ impl Sphere {
         }
         out
     }
+}
+
+impl Intersect for Sphere {
+    /// Nearest hit in `(0, t_max)`: the near root, or the far root when the ray starts
+    /// inside (the near root is then behind it).
+    #[inline]
+    fn intersect(&self, ray: &Ray, t_max: f32) -> Option<ShapeHit> {
+        let f = ray.origin - self.center;
+        let a = ray.dir.length_squared();
+        let half_b = f.dot(ray.dir);
+        let c = f.length_squared() - self.radius * self.radius;
+        if c > 0.0 && half_b > 0.0 {
+            // Starts outside and points away: both roots are behind.
+            return None;
+        }
+        // Discriminant as a * (r^2 - |f - (f.d / d.d) d|^2): the distance from the centre to
+        // the line is computed directly, which stays accurate for small or distant spheres
+        // (Haines et al., "Precision Improvements for Ray/Sphere Intersection", 2019).
+        let l = f - ray.dir * (half_b / a);
+        let disc = a * (self.radius * self.radius - l.length_squared());
+        if disc < 0.0 || a == 0.0 {
+            return None;
+        }
+        let q = -(half_b + disc.sqrt().copysign(half_b));
+        let (t0, t1) = if q == 0.0 {
+            (0.0, 0.0)
+        } else {
+            let (x, y) = (c / q, q / a);
+            if x < y { (x, y) } else { (y, x) }
+        };
+        in_range(t0, t_max, 0).or_else(|| in_range(t1, t_max, 0))
+    }
 
     /// Outward normal and equirectangular uv (longitude 0 toward +z, north pole v = 0).
-    pub fn surface(&self, p: Vec3A, want_uv: bool) -> Surface {
+    fn surface(&self, p: Vec3A, _hit: &ShapeHit, want_uv: bool) -> Surface {
         let n = (p - self.center).normalize_or(Vec3A::Y);
         Surface {
             point: self.center + n * self.radius,
@@ -101,12 +103,34 @@ impl Sphere {
         }
     }
 
-    /// Bounds.
-    pub fn bounds(&self) -> Aabb {
-        Aabb::new(
+    /// The box around the sphere, object space: its centre, less and plus the radius on
+    /// every axis.
+    fn bounds(&self) -> Option<Aabb> {
+        Some(Aabb::new(
             self.center - Vec3A::splat(self.radius),
             self.center + Vec3A::splat(self.radius),
-        )
+        ))
+    }
+
+    fn contains(&self, p: Vec3A) -> bool {
+        (p - self.center).length_squared() < self.radius * self.radius
+    }
+
+    /// The unit normal changes by the step over the radius (to first order, for a step in
+    /// the tangent plane): no square root for a mirror ball's reflected differentials.
+    fn differential(&self, p: Vec3A, hit: &ShapeHit, dp: Vec3A, want_uv: bool) -> (Vec2, Vec3A) {
+        if want_uv {
+            return super::differenced(self, p, hit, dp, true);
+        }
+        (Vec2::ZERO, (p + dp - self.center) / self.radius)
+    }
+
+    fn leaving(&self) -> Leaving {
+        Leaving::Outside
+    }
+
+    fn kind(&self) -> &'static str {
+        "sphere"
     }
 }
 

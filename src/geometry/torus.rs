@@ -7,7 +7,7 @@
 //! between the critical points (math::poly), not by Ferrari's formula, whose cancellations
 //! lose rays that graze the tube.
 
-use super::{ShapeHit, Surface, in_range};
+use super::{Intersect, Leaving, ShapeHit, Surface, in_range};
 use crate::math::poly::roots_in;
 use crate::math::{Aabb, Frame, Ray, Vec2, Vec3A};
 use std::f32::consts::TAU;
@@ -35,9 +35,11 @@ impl Torus {
             minor,
         }
     }
+}
 
+impl Intersect for Torus {
     /// The nearest hit with `0 < t < t_max`.
-    pub fn intersect(&self, ray: &Ray, t_max: f32) -> Option<ShapeHit> {
+    fn intersect(&self, ray: &Ray, t_max: f32) -> Option<ShapeHit> {
         let len = ray.dir.length() as f64;
         if len == 0.0 || !len.is_finite() {
             return None;
@@ -94,7 +96,7 @@ impl Torus {
     /// axis (as a cylinder's), `v` the angle about the tube, 0 on the outer equator and
     /// growing over the top (toward `+axis`) through the hole; the point is put back on the
     /// surface, so a hit found a little inside does not shadow itself.
-    pub fn surface(&self, p: Vec3A, want_uv: bool) -> Surface {
+    fn surface(&self, p: Vec3A, _hit: &ShapeHit, want_uv: bool) -> Surface {
         let l = self.frame.to_local(p - self.center);
         let rho = (l.x * l.x + l.y * l.y).sqrt();
         let (cx, cy) = if rho > 0.0 {
@@ -118,16 +120,24 @@ impl Torus {
     }
 
     /// True when `p` is strictly inside the tube.
-    pub fn contains(&self, p: Vec3A) -> bool {
+    fn contains(&self, p: Vec3A) -> bool {
         let l = self.frame.to_local(p - self.center);
         let rho = (l.x * l.x + l.y * l.y).sqrt();
         (rho - self.major).powi(2) + l.z * l.z < self.minor * self.minor
     }
 
     /// Bounds: the ring's, grown by the tube's radius.
-    pub fn bounds(&self) -> Aabb {
+    fn bounds(&self) -> Option<Aabb> {
         let b = super::cylinder::disk_bounds(self.center, self.frame.w, self.major);
-        Aabb::new(b.min - self.minor, b.max + self.minor)
+        Some(Aabb::new(b.min - self.minor, b.max + self.minor))
+    }
+
+    fn leaving(&self) -> Leaving {
+        Leaving::MayReturn
+    }
+
+    fn kind(&self) -> &'static str {
+        "torus"
     }
 }
 
@@ -196,13 +206,13 @@ mod tests {
         assert!(t.contains(Vec3A::new(3.0, 2.0, 3.0)));
         assert!(!t.contains(Vec3A::new(1.0, 2.0, 3.0)));
         assert!(!t.contains(Vec3A::new(3.6, 2.0, 3.0)));
-        let b = t.bounds();
+        let b = t.bounds().unwrap();
         assert_vec_close(b.min, Vec3A::new(-1.5, -0.5, 2.5), 1e-5);
         assert_vec_close(b.max, Vec3A::new(3.5, 4.5, 3.5), 1e-5);
         // About +y: u as a cylinder's (0.5 toward +z, 0.75 toward +x); v 0 on the outer
         // equator, a quarter at the top, a half at the inner equator.
         let s = Torus::new(Vec3A::ZERO, Vec3A::Y, 2.0, 0.5);
-        let uv = |p: [f32; 3]| s.surface(Vec3A::from(p), true).uv;
+        let uv = |p: [f32; 3]| s.surface(Vec3A::from(p), &on_part(0), true).uv;
         assert!((uv([0.0, 0.0, 2.5]) - Vec2::new(0.5, 0.0)).length() < 1e-5);
         assert!((uv([2.5, 0.0, 0.0]) - Vec2::new(0.75, 0.0)).length() < 1e-5);
         assert!((uv([0.0, 0.5, 2.0]) - Vec2::new(0.5, 0.25)).length() < 1e-5);
@@ -277,7 +287,7 @@ mod tests {
                     // A graze the marching steps step over, or a touch the solver misses: the
                     // ray passes within a hair of the surface either way.
                     (Some(g), None) | (None, Some(g)) => {
-                        let s = t.surface(ray.at(g), false);
+                        let s = t.surface(ray.at(g), &on_part(0), false);
                         prop_assert!((s.point - ray.at(g)).length() < 2e-3);
                         prop_assert!(
                             s.normal.dot(d).abs() < 0.05,
@@ -287,7 +297,7 @@ mod tests {
                     (None, None) => {}
                 }
                 if let Some(g) = got {
-                    let s = t.surface(ray.at(g), false);
+                    let s = t.surface(ray.at(g), &on_part(0), false);
                     prop_assert!((s.point - ray.at(g)).length() < 1e-3);
                     hits.set(hits.get() + 1);
                 }

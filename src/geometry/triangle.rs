@@ -1,7 +1,7 @@
 //! A triangle, and the watertight ray-triangle test (Woop, Benthin and Wald) that single
 //! triangles and meshes' blocks of eight both use.
 
-use super::{ShapeHit, Surface};
+use super::{Intersect, Leaving, ShapeHit, Surface};
 use crate::math::{Aabb, Ray, Vec2, Vec3A};
 use glam::{Mat3A, Vec4};
 
@@ -455,19 +455,6 @@ impl Triangle {
         })
     }
 
-    /// Watertight intersection (the same test as mesh triangles).
-    #[inline]
-    pub fn intersect(&self, ray: &Ray, t_max: f32) -> Option<ShapeHit> {
-        let (t, u, v) =
-            WatertightRay::new(ray).intersect(self.a, self.a + self.e1, self.a + self.e2, t_max)?;
-        Some(ShapeHit {
-            t,
-            part: 0,
-            prim: 0,
-            bary: Vec2::new(u, v),
-        })
-    }
-
     fn barycentric(&self, p: Vec3A) -> Vec2 {
         let rel = p - self.a;
         let (d00, d01, d11) = (
@@ -482,9 +469,24 @@ impl Triangle {
             (d00 * d21 - d01 * d20) / denom,
         )
     }
+}
+
+impl Intersect for Triangle {
+    /// Watertight intersection (the same test as mesh triangles).
+    #[inline]
+    fn intersect(&self, ray: &Ray, t_max: f32) -> Option<ShapeHit> {
+        let (t, u, v) =
+            WatertightRay::new(ray).intersect(self.a, self.a + self.e1, self.a + self.e2, t_max)?;
+        Some(ShapeHit {
+            t,
+            part: 0,
+            prim: 0,
+            bary: Vec2::new(u, v),
+        })
+    }
 
     /// Normal and barycentric uv (`u` toward `b`, `v` toward `c`).
-    pub fn surface(&self, p: Vec3A) -> Surface {
+    fn surface(&self, p: Vec3A, _hit: &ShapeHit, _want_uv: bool) -> Surface {
         let uv = self.barycentric(p);
         Surface {
             point: self.a + self.e1 * uv.x + self.e2 * uv.y,
@@ -493,11 +495,19 @@ impl Triangle {
         }
     }
 
-    /// Bounds.
-    pub fn bounds(&self) -> Aabb {
+    /// The box around the triangle's three corners, object space.
+    fn bounds(&self) -> Option<Aabb> {
         let mut b = Aabb::new(self.a, self.a + self.e1);
         b.grow(self.a + self.e2);
-        b
+        Some(b)
+    }
+
+    fn leaving(&self) -> Leaving {
+        Leaving::EitherSide
+    }
+
+    fn kind(&self) -> &'static str {
+        "triangle"
     }
 }
 

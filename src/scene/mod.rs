@@ -79,7 +79,8 @@ pub struct Scene {
     pub ambient: Color,
     /// Optional fog.
     pub fog: Option<Fog>,
-    /// Shapes.
+    /// The placed shapes, each with its material and transform (the BVH's leaves index
+    /// this list).
     pub objects: Vec<Object>,
     /// Materials (objects refer to them by index).
     pub materials: Vec<Material>,
@@ -275,7 +276,7 @@ impl Scene {
 
     fn hit_details(&self, ray: &Ray, i: usize, h: ShapeHit, force_uv: bool) -> Hit {
         /// Out of line: few objects have a second uv set, and `hit_details` is inlined
-        /// into every ray query (with this in it, it was not, which cost 3 %).
+        /// into every ray query, which this would otherwise keep the inliner from doing.
         #[cold]
         #[inline(never)]
         fn second_uv(o: &Object, h: &ShapeHit) -> Option<crate::math::Vec2> {

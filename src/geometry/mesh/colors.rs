@@ -26,6 +26,7 @@ impl Mesh {
 #[cfg(test)]
 mod tests {
     use super::super::{Mesh, MeshInput};
+    use crate::geometry::Intersect;
     use crate::math::{Ray, Vec3, Vec3A};
 
     #[test]

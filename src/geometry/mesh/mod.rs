@@ -9,7 +9,7 @@ mod solid;
 mod tangents;
 
 use super::triangle::{BlockRay, LANES, TriangleBlock};
-use super::{ShapeHit, Surface};
+use super::{Intersect, Leaving, ShapeHit, Surface};
 use crate::accel::wide::collapse::collapse;
 use crate::accel::wide::{LEAF, Visit, WideBvh, WideNode};
 use crate::math::{Aabb, Ray, Vec2, Vec3, Vec3A};
@@ -321,43 +321,11 @@ impl Mesh {
         self.slots.get(prim as usize).copied().unwrap_or(0)
     }
 
-    /// Object-space bounds.
-    pub fn bounds(&self) -> Aabb {
-        self.bounds
-    }
-
-    /// Nearest hit with `0 < t < t_max`: the triangle's index and barycentrics come back in
-    /// `prim` and `bary`.
-    #[inline]
-    pub fn intersect(&self, ray: &Ray, t_max: f32) -> Option<ShapeHit> {
-        let mut closest = TriangleQuery::<false> {
-            blocks: &self.blocks,
-            source: ray,
-            ray: None,
-            hit: None,
-        };
-        self.bvh.walk::<true>(ray, t_max, &mut closest);
-        closest.hit
-    }
-
-    /// Whether any triangle is hit with `0 < t < t_max`; stops at the first found.
-    #[inline]
-    pub fn occluded(&self, ray: &Ray, t_max: f32) -> bool {
-        let mut any = TriangleQuery::<true> {
-            blocks: &self.blocks,
-            source: ray,
-            ray: None,
-            hit: None,
-        };
-        self.bvh.walk::<false>(ray, t_max, &mut any);
-        any.hit.is_some()
-    }
-
     /// Surface details of a hit: the point re-projected from the barycentrics, the geometric
     /// normal (turned to agree with the vertex normals when there are any, since exporters
     /// keep normals consistent more reliably than winding), and the interpolated uv (the
     /// barycentrics when the mesh has none).
-    pub fn surface(&self, hit: &ShapeHit) -> Surface {
+    pub fn hit_surface(&self, hit: &ShapeHit) -> Surface {
         let [a, b, c] = self.corners(hit.prim);
         let (u, v) = (hit.bary.x, hit.bary.y);
         let w = 1.0 - u - v;
@@ -375,36 +343,6 @@ impl Mesh {
             self.uvs[f[0] as usize] * w + self.uvs[f[1] as usize] * u + self.uvs[f[2] as usize] * v
         };
         Surface { point, normal, uv }
-    }
-
-    /// How the uv changes from a hit at `p` to the point `dp` away from it on the triangle's
-    /// plane, and the shading normal there: the barycentrics' change times the corners' uvs
-    /// (the barycentrics themselves where the mesh has no uvs), and the vertex normals
-    /// interpolated there (the face's normal where the mesh has none).
-    pub fn differential(&self, p: Vec3A, hit: &ShapeHit, dp: Vec3A) -> (Vec2, Vec3A) {
-        let Some((a, bary_of)) = self.barycentrics_in_plane(hit.prim) else {
-            return (Vec2::ZERO, self.surface(hit).normal);
-        };
-        let hit = &ShapeHit {
-            bary: bary_of(p - a),
-            ..*hit
-        };
-        let db = bary_of(dp);
-        let f = self.faces[hit.prim as usize];
-        let duv = if self.uvs.is_empty() {
-            db
-        } else {
-            let t = |i: usize| self.uvs[f[i] as usize];
-            (t(1) - t(0)) * db.x + (t(2) - t(0)) * db.y
-        };
-        let moved = ShapeHit {
-            bary: hit.bary + db,
-            ..*hit
-        };
-        let normal = self
-            .interpolated_normal(&moved)
-            .unwrap_or_else(|| self.surface(hit).normal);
-        (duv, normal)
     }
 
     /// Triangle `prim`'s first corner, and the barycentrics (of the second and third
@@ -457,6 +395,82 @@ impl Mesh {
             + Vec3A::from(self.normals[f[2] as usize]) * v;
         let n = n.normalize_or_zero();
         (n != Vec3A::ZERO).then_some(n)
+    }
+}
+
+impl Intersect for Mesh {
+    /// Object-space bounds.
+    fn bounds(&self) -> Option<Aabb> {
+        Some(self.bounds)
+    }
+
+    /// Nearest hit with `0 < t < t_max`: the triangle's index and barycentrics come back in
+    /// `prim` and `bary`.
+    #[inline]
+    fn intersect(&self, ray: &Ray, t_max: f32) -> Option<ShapeHit> {
+        let mut closest = TriangleQuery::<false> {
+            blocks: &self.blocks,
+            source: ray,
+            ray: None,
+            hit: None,
+        };
+        self.bvh.walk::<true>(ray, t_max, &mut closest);
+        closest.hit
+    }
+
+    /// Whether any triangle is hit with `0 < t < t_max`; stops at the first found.
+    #[inline]
+    fn occluded(&self, ray: &Ray, t_max: f32) -> bool {
+        let mut any = TriangleQuery::<true> {
+            blocks: &self.blocks,
+            source: ray,
+            ray: None,
+            hit: None,
+        };
+        self.bvh.walk::<false>(ray, t_max, &mut any);
+        any.hit.is_some()
+    }
+
+    /// How the uv changes from a hit at `p` to the point `dp` away from it on the triangle's
+    /// plane, and the shading normal there: the barycentrics' change times the corners' uvs
+    /// (the barycentrics themselves where the mesh has no uvs), and the vertex normals
+    /// interpolated there (the face's normal where the mesh has none).
+    fn differential(&self, p: Vec3A, hit: &ShapeHit, dp: Vec3A, _want_uv: bool) -> (Vec2, Vec3A) {
+        let Some((a, bary_of)) = self.barycentrics_in_plane(hit.prim) else {
+            return (Vec2::ZERO, self.hit_surface(hit).normal);
+        };
+        let hit = &ShapeHit {
+            bary: bary_of(p - a),
+            ..*hit
+        };
+        let db = bary_of(dp);
+        let f = self.faces[hit.prim as usize];
+        let duv = if self.uvs.is_empty() {
+            db
+        } else {
+            let t = |i: usize| self.uvs[f[i] as usize];
+            (t(1) - t(0)) * db.x + (t(2) - t(0)) * db.y
+        };
+        let moved = ShapeHit {
+            bary: hit.bary + db,
+            ..*hit
+        };
+        let normal = self
+            .interpolated_normal(&moved)
+            .unwrap_or_else(|| self.hit_surface(hit).normal);
+        (duv, normal)
+    }
+
+    fn surface(&self, _p: Vec3A, hit: &ShapeHit, _want_uv: bool) -> Surface {
+        self.hit_surface(hit)
+    }
+
+    fn leaving(&self) -> Leaving {
+        Leaving::MayReturn
+    }
+
+    fn kind(&self) -> &'static str {
+        "mesh"
     }
 }
 
@@ -513,23 +527,19 @@ impl<const ANY: bool> Visit for TriangleQuery<'_, ANY> {
 
 /// Up to how many triangles a mesh's binary tree is optimised by reinsertion over all its
 /// nodes; beyond, over this many of them (at least 5 %, obvhs's `medium_build`), so the
-/// build's time keeps in step with the mesh's size. With PLOC's medium search from depth 1
-/// instead of 3, the bunny's tree (29 % of its nodes) builds in 56 ms instead of 45 and a
-/// million triangles in 0.69 s instead of 0.62; rays through the bunny: random 1.03 times as
-/// fast, camera the same; the teapot (every node): random 1.07, camera 1.03. Renders at
-/// 1024 x 1024: bunny.toml 0.973 of the time, field.toml 1.002 (at 256 x 256, where the
-/// build is a larger share, 1.008 and 1.13). Every node for the bunny too: rays 1.04 times
-/// as fast, but its build took 100 ms and a million triangles 2.2 s.
+/// build's time keeps in step with the mesh's size. Reinsertion (with PLOC's medium search
+/// from depth 1) makes rays through a mesh faster, but it is paid before the first pixel,
+/// and over every node of a large mesh its time grows much faster than its rays gain: a
+/// small picture of a large mesh would wait on the build (docs/perf-log.md).
 const REINSERTION_TRIANGLES: f32 = 20_000.0;
 
 /// How many of the last blocks a leaf may go into, when it has room there. Leaves hold one
-/// to eight triangles (4.6 on average in the bunny's tree), so a block per leaf would leave
-/// almost half the lanes empty; sharing blocks fills 80 % of them when a leaf may only go
-/// into the last block, 89 % with 4, 94 % with 16 and 97 % with 64 (the bunny: 9,199 blocks
-/// for 14,956 leaves with 16; 4, 16 and 64 measured the same), and the leaves stay near
-/// their neighbours in the tree. The bunny's triangles take 2.6 MB, which matters where
-/// they do not fit in the cache: with blocks of four lanes, sharing them took 3.7 MB down to
-/// 2.6 and random rays through the bunny ran 3 % faster (48 bytes more a block, 8 % slower).
+/// to eight triangles, so a block per leaf would leave many lanes empty; sharing blocks fills
+/// more of them the more blocks a leaf may choose from, and a window this small keeps the
+/// leaves near their neighbours in the tree (windows of 4 and 64 measured the same).
+/// Full blocks matter because a large mesh's triangles do not fit in the cache, and random
+/// rays, which read them from memory, slow down with every byte a block takes
+/// (docs/perf-log.md).
 const PACKING_WINDOW: usize = 16;
 
 /// Where a mesh leaf reference keeps its lanes: the first (three bits), then the count less

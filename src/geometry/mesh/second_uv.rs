@@ -40,6 +40,7 @@ impl Mesh {
 #[cfg(test)]
 mod tests {
     use super::super::{Mesh, MeshInput};
+    use crate::geometry::Intersect;
     use crate::math::{Ray, Vec2, Vec3, Vec3A};
 
     /// The second set blends between its corners like the first, and changes across the

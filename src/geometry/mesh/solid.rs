@@ -2,6 +2,7 @@
 //! closed, and whether a point lies inside it.
 
 use super::Mesh;
+use crate::geometry::Intersect;
 use crate::math::{Ray, Vec3A};
 use std::collections::HashMap;
 

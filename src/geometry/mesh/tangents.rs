@@ -45,7 +45,7 @@ impl Mesh {
         };
         let n = self
             .interpolated_normal(&hit)
-            .unwrap_or_else(|| self.surface(&hit).normal);
+            .unwrap_or_else(|| self.hit_surface(&hit).normal);
         let i = 3 * prim as usize;
         let [t0, t1, t2] = [0, 1, 2].map(|k| corners[i + k]);
         let w = 1.0 - bary.x - bary.y;

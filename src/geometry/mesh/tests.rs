@@ -121,7 +121,7 @@ fn closed_cube_is_hit_from_outside_and_inside() {
     let ray = Ray::new(Vec3A::new(0.3, 0.4, 5.0), Vec3A::NEG_Z);
     let h = m.intersect(&ray, f32::INFINITY).unwrap();
     assert!((h.t - 4.0).abs() < 1e-6);
-    let s = m.surface(&h);
+    let s = m.hit_surface(&h);
     assert!(
         (s.normal - Vec3A::Z).length() < 1e-6,
         "outward normal {}",
@@ -235,7 +235,7 @@ fn smooth_normals_and_uvs_are_interpolated() {
         .intersect(&Ray::new(Vec3A::new(0.5, 0.25, 1.0), Vec3A::NEG_Z), 10.0)
         .unwrap();
     assert!((h.bary - Vec2::new(0.5, 0.25)).length() < 1e-6);
-    let s = m.surface(&h);
+    let s = m.hit_surface(&h);
     assert!((s.uv - Vec2::new(0.5, 0.5)).length() < 1e-6);
     let n = m.interpolated_normal(&h).unwrap();
     assert!(n.x > 0.1 && n.z > 0.5 && (n.length() - 1.0).abs() < 1e-6);
