@@ -17,7 +17,7 @@ use super::path_explain::{
     RouletteRecord, VertexRecord,
 };
 use crate::bsdf::{Bsdf, BsdfSample};
-use crate::light::Falloff;
+use crate::light::{Falloff, Light};
 use crate::math::differential::Differentials;
 use crate::math::distribution::power_heuristic;
 use crate::math::{Color, Frame, Ray, Vec2, Vec3A, offset_ray_origin};
@@ -308,13 +308,13 @@ impl Path {
         specular: bool,
         prev_pdf: f32,
     ) -> Color {
-        match &scene.environment {
-            Some(env) if env.visible || depth > 1 => {
+        match (scene.environment(), scene.environment_light) {
+            (Some(env), Some(i)) if env.visible || depth > 1 => {
                 if specular {
                     return env.radiance(ray.dir);
                 }
                 let (le, pdf) = env.radiance_pdf(ray.dir);
-                let p_light = scene.light_sampler.environment_probability() * pdf;
+                let p_light = scene.light_sampler.probability(i) * pdf;
                 le * power_heuristic(prev_pdf, p_light)
             }
             _ => scene.background,
@@ -338,9 +338,11 @@ impl Path {
         let Some(a) = scene.area_light_at(hit) else {
             return (1.0, None);
         };
-        let light = &scene.area_lights[a];
+        let Some(light) = scene.area_light(a) else {
+            return (1.0, None);
+        };
         let p_light =
-            scene.light_sampler.area_probability(a) * light.pdf(prev_point, hit.point, hit.normal);
+            scene.light_sampler.probability(a) * light.pdf(prev_point, hit.point, hit.normal);
         (power_heuristic(prev_pdf, p_light), Some(p_light))
     }
 
@@ -355,22 +357,15 @@ impl Path {
         ul: Vec2,
         rays: &mut RayStats,
     ) -> (Color, Option<LightSampleRecord>) {
-        let Some(mut c) = scene.light_sampler.sample(
-            &scene.lights,
-            &scene.area_lights,
-            scene.environment.as_ref(),
-            hit.point,
-            uc,
-            ul,
-            Falloff::InverseSquare,
-        ) else {
+        let Some(mut c) =
+            scene
+                .light_sampler
+                .sample(&scene.lights, hit.point, uc, ul, Falloff::InverseSquare)
+        else {
             return (Color::ZERO, None);
         };
         // A textured light's radiance is read where the sample lies on it.
-        if let Some(light) = c
-            .light
-            .checked_sub(scene.lights.len())
-            .and_then(|a| scene.area_lights.get(a))
+        if let Some(light) = scene.area_light(c.light)
             && light.texture.is_some()
         {
             let side = if c.to_light.dot(v.ng) > 0.0 {
@@ -398,16 +393,15 @@ impl Path {
         let f = v.bsdf.f(v.wo, wi) * wi.z.abs();
         let record = |blocked: Option<&str>| {
             R::ACTIVE.then(|| {
-                let n = scene.lights.len();
                 let (w, bsdf_pdf) = weight();
                 LightSampleRecord {
                     light: c.light,
-                    what: if c.light < n {
-                        scene.lights[c.light].kind_name().to_string()
-                    } else if let Some(a) = scene.area_lights.get(c.light - n) {
-                        format!("area light on `{}`", scene.objects[a.object].name)
-                    } else {
-                        "the environment".to_string()
+                    what: match &scene.lights[c.light] {
+                        Light::Area(a) => {
+                            format!("area light on `{}`", scene.objects[a.object].name)
+                        }
+                        Light::Environment(_) => "the environment".to_string(),
+                        l => l.kind_name().to_string(),
                     },
                     direction: c.to_light.to_array(),
                     distance: c.distance,

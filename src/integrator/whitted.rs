@@ -8,8 +8,10 @@ use super::explain::{
     ShadowRecord, uv2,
 };
 use super::{Integrator, RayStats};
-use crate::light::Light;
-use crate::math::{Color, Ray, Vec3A, fresnel_dielectric, offset_ray_origin, reflect, refract};
+use crate::light::{Falloff, Light};
+use crate::math::{
+    Color, Ray, Vec2, Vec3A, fresnel_dielectric, offset_ray_origin, reflect, refract,
+};
 use crate::scene::{Hit, RayDifferentials, Scene, Skip};
 
 /// The Whitted integrator.
@@ -180,7 +182,7 @@ impl Whitted {
                     }
                     fog.apply(scene.background, f32::INFINITY)
                 }
-                _ => match &scene.environment {
+                _ => match scene.environment() {
                     // The environment as the background (hidden from camera rays when it
                     // says so); Whitted does not light surfaces with it.
                     Some(env) if env.visible || seg.depth > 1 => {
@@ -315,8 +317,9 @@ impl Whitted {
             }
         }
         let view = -d;
-        for (index, light) in scene.lights.iter().enumerate() {
-            let Some(ls) = light.sample(above) else {
+        // Whitted lights by the point, spot and directional lights, which come first.
+        for (index, light) in scene.lights.iter().take_while(|l| l.is_delta()).enumerate() {
+            let Some(ls) = light.sample_li(above, Vec2::ZERO, Falloff::None) else {
                 if R::ACTIVE {
                     rec.light(light_record(
                         index,
@@ -601,11 +604,7 @@ fn light_record(
 ) -> LightRecord {
     LightRecord {
         light: index,
-        kind: match light {
-            Light::Point { .. } => "point",
-            Light::Directional { .. } => "directional",
-            Light::Spot { .. } => "spot",
-        },
+        kind: light.kind_name(),
         to_light: to_light.to_array(),
         distance: distance.filter(|d| d.is_finite()),
         cos,

@@ -3,6 +3,7 @@
 //! within the cone of directions they fill. Emission leaves the front side (where the
 //! shape's outward normal points) or both.
 
+use super::{Emit, Falloff, LightSample};
 use crate::geometry::{Disk, Rect, Sphere, SurfaceSample, Triangle, area_to_solid_angle};
 use crate::math::{Color, Vec2, Vec3A};
 
@@ -88,12 +89,6 @@ pub struct AreaSample {
 }
 
 impl AreaLight {
-    /// Its power (flux) in luminance: `pi * area * L` a side.
-    pub fn power(&self) -> f32 {
-        let sides = if self.two_sided { 2.0 } else { 1.0 };
-        std::f32::consts::PI * self.emitter.area() * crate::math::luminance(self.radiance) * sides
-    }
-
     /// The radiance leaving a point of front normal `normal` toward `dir` (unit, away from
     /// the light).
     #[inline]
@@ -137,6 +132,38 @@ impl AreaLight {
             Emitter::Sphere(s) => s.solid_angle_pdf(from, point),
             e => area_to_solid_angle(1.0 / e.area(), from, point, normal).unwrap_or(0.0),
         }
+    }
+}
+
+impl Emit for AreaLight {
+    /// A point of the light chosen for `from` ([`AreaLight::sample`]) and the radiance it
+    /// sends there (the untextured radiance: the caller reads a texture's at the point).
+    fn sample_li(&self, from: Vec3A, u: Vec2, _default: Falloff) -> Option<LightSample> {
+        let s = self.sample(from, u)?;
+        let d = s.point - from;
+        let distance = d.length();
+        let to_light = d / distance;
+        let radiance = self.emitted(s.normal, -to_light);
+        (radiance != Color::ZERO && distance > 0.0).then_some(LightSample {
+            to_light,
+            distance,
+            radiance,
+            pdf: s.pdf,
+        })
+    }
+
+    /// Its flux in luminance: `pi * area * L` a side.
+    fn power(&self, _radius: f32) -> f32 {
+        let sides = if self.two_sided { 2.0 } else { 1.0 };
+        std::f32::consts::PI * self.emitter.area() * crate::math::luminance(self.radiance) * sides
+    }
+
+    fn is_delta(&self) -> bool {
+        false
+    }
+
+    fn kind_name(&self) -> &'static str {
+        "area"
     }
 }
 
@@ -224,6 +251,6 @@ mod tests {
         assert_eq!(l.emitted(Vec3A::Z, -Vec3A::Z), Color::ZERO);
         l.two_sided = true;
         assert_eq!(l.emitted(Vec3A::Z, -Vec3A::Z), Color::ONE);
-        assert!((l.power() - 2.0 * std::f32::consts::PI * std::f32::consts::PI).abs() < 1e-4);
+        assert!((l.power(1.0) - 2.0 * std::f32::consts::PI * std::f32::consts::PI).abs() < 1e-4);
     }
 }

@@ -4,6 +4,7 @@
 
 pub use super::env_map::{EnvironmentMap, EnvironmentSample};
 use super::sky::Sky;
+use super::{Emit, Falloff, LightSample};
 use crate::math::{Color, Vec2, Vec3A, luminance};
 use std::f32::consts::PI;
 
@@ -90,16 +91,38 @@ impl Environment {
             },
         }
     }
+}
 
-    /// Its power as a light of a scene of radius `radius`: what falls on a disk of that
-    /// radius, `pi r^2 x pi x` the mean luminance over all directions.
-    pub fn power(&self, radius: f32) -> f32 {
+impl Emit for Environment {
+    /// A direction by [`Environment::sample`], for a point anywhere.
+    fn sample_li(&self, _from: Vec3A, u: Vec2, _default: Falloff) -> Option<LightSample> {
+        let s = self.sample(u)?;
+        (s.radiance != Color::ZERO).then_some(LightSample {
+            to_light: s.direction,
+            distance: f32::INFINITY,
+            radiance: s.radiance,
+            pdf: s.pdf,
+        })
+    }
+
+    /// What falls on a disk of the scene's radius (at least 0.001): `pi r^2 x pi x` the mean
+    /// luminance over all directions.
+    fn power(&self, radius: f32) -> f32 {
+        let radius = radius.max(1e-3);
         let mean = match &self.source {
             EnvironmentSource::Constant(c) => *c,
             EnvironmentSource::Map(m) => m.mean,
             EnvironmentSource::Sky(s) => s.mean(),
         };
         PI * radius * radius * PI * luminance(mean)
+    }
+
+    fn is_delta(&self) -> bool {
+        false
+    }
+
+    fn kind_name(&self) -> &'static str {
+        "environment"
     }
 }
 

@@ -1,20 +1,28 @@
-//! Light sources: point, directional and spot (here), area lights on emitting shapes
-//! (area.rs), and the choice among them by power for the path tracer (select.rs). Point and
+//! Light sources, all behind one interface ([`Emit`]) in one list: point, spot and
+//! directional lights, area lights on emitting shapes (area.rs), the environment
+//! (environment.rs, with sky/), and the choice among them by power for the path tracer
+//! (select.rs). Point and
 //! spot lights fall off with distance as their `falloff` says; by default not at all under
 //! the Whitted integrator (the seed report's and POV-Ray's default, so a scene's brightness
 //! does not depend on its scale), as `1 / d^2` under the path tracer.
 
 pub mod area;
+mod directional;
 mod env_map;
 pub mod environment;
+mod point;
 pub mod select;
 pub mod sky;
+mod spot;
 
 pub use area::{AreaLight, Emitter, ObjectLights};
+pub use directional::DirectionalLight;
 pub use environment::{Environment, EnvironmentMap, EnvironmentSample, EnvironmentSource};
+pub use point::PointLight;
 pub use select::{LightChoice, LightSampler};
+pub use spot::SpotLight;
 
-use crate::math::{Color, Vec3A};
+use crate::math::{Color, Vec2, Vec3A};
 use schemars::JsonSchema;
 use serde::Deserialize;
 
@@ -28,40 +36,51 @@ pub enum Falloff {
     InverseSquare,
 }
 
-/// A light source. Colours are linear RGB radiance multipliers.
-#[derive(Clone, Debug, PartialEq)]
-pub enum Light {
-    /// Shines equally in every direction from a point.
-    Point {
-        /// Where it is.
-        position: Vec3A,
-        /// Colour times intensity.
-        color: Color,
-        /// How it weakens with distance; `None`: the integrator's default.
-        falloff: Option<Falloff>,
-    },
-    /// Parallel light from infinitely far away (the sun).
-    Directional {
-        /// Unit direction the light travels in.
-        direction: Vec3A,
-        /// Colour times intensity.
-        color: Color,
-    },
-    /// A point light limited to a cone, with a soft edge.
-    Spot {
-        /// Where it is.
-        position: Vec3A,
-        /// Unit direction of the cone's axis.
-        direction: Vec3A,
-        /// Colour times intensity.
-        color: Color,
-        /// Cosine of the cone's half-angle: outside it there is no light.
-        cos_outer: f32,
-        /// Cosine of the half-angle inside which the light is full.
-        cos_inner: f32,
-        /// How it weakens with distance; `None`: the integrator's default.
-        falloff: Option<Falloff>,
-    },
+crate::closed_set! {
+    /// What every light gives: light arriving at a point from it, and its power, by which
+    /// next-event estimation chooses among lights. Implemented by each light in its file;
+    /// [`Light`] forwards to them.
+    pub trait Emit {
+        /// The light arriving at `from` from a point of this light chosen by `u` (ignored by
+        /// lights that are one point or one direction), unshadowed, falling off as the light
+        /// says or, where it does not say, as `default`; `None` where none arrives (outside a
+        /// spot's cone, `from` at the light, a dark sample).
+        fn sample_li(&self, from: Vec3A, u: Vec2, default: Falloff) -> Option<LightSample>;
+
+        /// Its power for choosing among lights, in luminance, in a scene of radius `radius`
+        /// (a directional light's and the environment's power is what falls on a disk of that
+        /// radius).
+        fn power(&self, radius: f32) -> f32;
+
+        /// Whether it lies in one point or one direction, which no BSDF sample can reach (no
+        /// MIS).
+        fn is_delta(&self) -> bool;
+
+        /// The light's `type` in the scene file.
+        fn kind_name(&self) -> &'static str;
+
+        /// Where the light is, for lights that have a position.
+        fn position(&self) -> Option<Vec3A> {
+            None
+        }
+    }
+
+    /// A light source: one of a closed set, one file per light. A scene keeps all of its
+    /// lights in one list ([`crate::Scene::lights`]): point, spot and directional lights
+    /// first, then the area lights, then the environment.
+    #[derive(Clone, Debug)]
+    pub enum Light {
+        /// Shines equally in every direction from a point.
+        Point(PointLight),
+        /// A point light limited to a cone, with a soft edge.
+        Spot(SpotLight),
+        /// Parallel light from infinitely far away (the sun).
+        Directional(DirectionalLight),
+        /// An emitting object.
+        Area(AreaLight),
+        /// Light from every direction, far away: a colour, an image or a sky.
+        Environment(Environment),
+    }
 }
 
 /// Light arriving at a point from one source.
@@ -69,102 +88,33 @@ pub enum Light {
 pub struct LightSample {
     /// Unit direction from the point toward the light.
     pub to_light: Vec3A,
-    /// Distance to the light (infinite for directional lights).
+    /// Distance to the light (infinite for directional lights and the environment).
     pub distance: f32,
-    /// Light arriving, before shadowing.
+    /// Light arriving, before shadowing: radiance, or for a delta light irradiance.
     pub radiance: Color,
+    /// The density of the direction per unit solid angle (1 for a delta light).
+    pub pdf: f32,
 }
 
-impl Light {
-    /// The light reaching `p` from this source, or `None` if it cannot (outside a spot's
-    /// cone, or `p` at the light's position), falling off as the light says, by default not
-    /// at all (the Whitted integrator's reading).
-    #[inline]
-    pub fn sample(&self, p: Vec3A) -> Option<LightSample> {
-        self.sample_falling_off(p, Falloff::None)
-    }
-
-    /// [`Light::sample`], lights that do not say how they fall off falling off as `default`
-    /// says.
-    #[inline]
-    pub fn sample_falling_off(&self, p: Vec3A, default: Falloff) -> Option<LightSample> {
-        let mut s = self.sample_unattenuated(p)?;
-        if let Light::Point { falloff, .. } | Light::Spot { falloff, .. } = self
-            && falloff.unwrap_or(default) == Falloff::InverseSquare
-        {
-            s.radiance /= s.distance * s.distance;
-        }
-        Some(s)
-    }
-
-    fn sample_unattenuated(&self, p: Vec3A) -> Option<LightSample> {
-        match self {
-            Light::Point {
-                position, color, ..
-            } => {
-                let d = *position - p;
-                let distance = d.length();
-                (distance > 0.0).then(|| LightSample {
-                    to_light: d / distance,
-                    distance,
-                    radiance: *color,
-                })
-            }
-            Light::Directional { direction, color } => Some(LightSample {
-                to_light: -*direction,
-                distance: f32::INFINITY,
-                radiance: *color,
-            }),
-            Light::Spot {
-                position,
-                direction,
-                color,
-                cos_outer,
-                cos_inner,
-                ..
-            } => {
-                let d = *position - p;
-                let distance = d.length();
-                if distance == 0.0 {
-                    return None;
-                }
-                let to_light = d / distance;
-                let cos = (-to_light).dot(*direction);
-                let falloff = smoothstep(*cos_outer, *cos_inner, cos);
-                (falloff > 0.0).then(|| LightSample {
-                    to_light,
-                    distance,
-                    radiance: *color * falloff,
-                })
-            }
-        }
-    }
-
-    /// The light's `type` in the scene file.
-    pub fn kind_name(&self) -> &'static str {
-        match self {
-            Light::Point { .. } => "point",
-            Light::Directional { .. } => "directional",
-            Light::Spot { .. } => "spot",
-        }
-    }
-
-    /// Where the light is, for lights that have a position.
-    pub fn position(&self) -> Option<Vec3A> {
-        match self {
-            Light::Point { position, .. } | Light::Spot { position, .. } => Some(*position),
-            Light::Directional { .. } => None,
-        }
+/// `color` at `distance` from a light that falls off as `falloff` says, by default as
+/// `default`.
+#[inline]
+fn fall_off(color: Color, distance: f32, falloff: Option<Falloff>, default: Falloff) -> Color {
+    match falloff.unwrap_or(default) {
+        Falloff::InverseSquare => color / (distance * distance),
+        Falloff::None => color,
     }
 }
 
-/// 0 below `edge0`, 1 above `edge1`, a smooth cubic between (a hard step when they meet).
-fn smoothstep(edge0: f32, edge1: f32, x: f32) -> f32 {
-    if edge1 <= edge0 {
-        return if x >= edge0 { 1.0 } else { 0.0 };
+/// What a light that does not fall off is scaled by for its power, so that it is as bright
+/// as one that does at the scene's radius: the radius squared (1 for one that does, or that
+/// leaves it to the integrator).
+fn unfalling_scale(falloff: Option<Falloff>, radius: f32) -> f32 {
+    if falloff == Some(Falloff::None) {
+        (radius * radius).max(1e-6)
+    } else {
+        1.0
     }
-    let t = ((x - edge0) / (edge1 - edge0)).clamp(0.0, 1.0);
-    t * t * (3.0 - 2.0 * t)
 }
 
 #[cfg(test)]
@@ -172,19 +122,24 @@ mod tests {
     use super::*;
 
     fn spot(angle: f32, soft: f32) -> Light {
-        Light::Spot {
+        Light::Spot(SpotLight {
             position: Vec3A::new(0.0, 10.0, 0.0),
             direction: -Vec3A::Y,
             color: Color::ONE,
             cos_outer: angle.to_radians().cos(),
             cos_inner: (angle - soft).to_radians().cos(),
             falloff: None,
-        }
+        })
+    }
+
+    /// The light arriving at `p`, not falling off (the Whitted integrator's reading).
+    fn at(l: &Light, p: Vec3A) -> Option<LightSample> {
+        l.sample_li(p, Vec2::ZERO, Falloff::None)
     }
 
     fn at_angle(l: &Light, deg: f32) -> f32 {
         let p = Vec3A::new(10.0 * deg.to_radians().tan(), 0.0, 0.0);
-        l.sample(p).map_or(0.0, |s| s.radiance.x)
+        at(l, p).map_or(0.0, |s| s.radiance.x)
     }
 
     #[test]
@@ -202,24 +157,24 @@ mod tests {
 
     #[test]
     fn point_and_directional() {
-        let p = Light::Point {
+        let p = Light::Point(PointLight {
             position: Vec3A::new(0.0, 4.0, 3.0),
             color: Color::splat(2.0),
             falloff: None,
-        };
-        let s = p.sample(Vec3A::ZERO).unwrap();
+        });
+        let s = at(&p, Vec3A::ZERO).unwrap();
         assert!((s.distance - 5.0).abs() < 1e-6);
         assert!((s.to_light - Vec3A::new(0.0, 0.8, 0.6)).length() < 1e-6);
         assert_eq!(s.radiance, Color::splat(2.0), "no distance falloff");
         let s = p
-            .sample_falling_off(Vec3A::ZERO, Falloff::InverseSquare)
+            .sample_li(Vec3A::ZERO, Vec2::ZERO, Falloff::InverseSquare)
             .unwrap();
         assert!((s.radiance.x - 2.0 / 25.0).abs() < 1e-7, "1 / d^2");
-        let d = Light::Directional {
+        let d = Light::Directional(DirectionalLight {
             direction: -Vec3A::Y,
             color: Color::ONE,
-        };
-        let s = d.sample(Vec3A::new(100.0, 0.0, 0.0)).unwrap();
+        });
+        let s = at(&d, Vec3A::new(100.0, 0.0, 0.0)).unwrap();
         assert_eq!(s.to_light, Vec3A::Y);
         assert!(s.distance.is_infinite());
     }

@@ -33,7 +33,7 @@ use crate::accel::Bvh;
 pub use crate::accel::Skip;
 use crate::camera::Camera;
 use crate::geometry::{Leaving, Shape, ShapeHit};
-use crate::light::{AreaLight, Light, LightSampler};
+use crate::light::{AreaLight, Environment, Light, LightSampler};
 use crate::material::Material;
 use crate::math::{Color, LANES, Ray, Vec3A};
 use crate::texture::{Texture, TexturePoint};
@@ -73,8 +73,9 @@ pub struct Scene {
     pub settings: RenderSettings,
     /// Colour of rays that hit nothing.
     pub background: Color,
-    /// Light from every direction, far away (`[environment]`), if the scene has one.
-    pub environment: Option<crate::light::Environment>,
+    /// Where in [`Scene::lights`] the environment (`[environment]`) is, if the scene has
+    /// one (see [`Scene::environment`]).
+    pub environment_light: Option<usize>,
     /// Global ambient light.
     pub ambient: Color,
     /// Optional fog.
@@ -90,11 +91,10 @@ pub struct Scene {
     pub texture_names: BTreeMap<String, usize>,
     /// Names of the materials, by index.
     pub material_names: Vec<String>,
-    /// Point, spot and directional lights.
+    /// Every light, in one list: the point, spot and directional lights, then the emitting
+    /// objects the path tracer samples as area lights, then the environment.
     pub lights: Vec<Light>,
-    /// Emitting objects the path tracer samples as lights.
-    pub area_lights: Vec<AreaLight>,
-    /// Per object, which area lights it is (see [`Scene::area_light_at`]).
+    /// Per object, which of the lights it is (see [`Scene::area_light_at`]).
     pub area_light_of: Vec<crate::light::ObjectLights>,
     /// The choice among all lights by power, for the path tracer.
     pub light_sampler: LightSampler,
@@ -149,10 +149,37 @@ impl Scene {
         })
     }
 
-    /// The area light a hit is on, if the path tracer samples the emission there.
+    /// The area light a hit is on (its index in [`Scene::lights`]), if the path tracer
+    /// samples the emission there.
     #[inline]
     pub fn area_light_at(&self, hit: &Hit) -> Option<usize> {
         self.area_light_of[hit.object].at(hit.prim)
+    }
+
+    /// Light `i` if it is an area light.
+    #[inline]
+    pub fn area_light(&self, i: usize) -> Option<&AreaLight> {
+        match self.lights.get(i) {
+            Some(Light::Area(a)) => Some(a),
+            _ => None,
+        }
+    }
+
+    /// The area lights, in their order in [`Scene::lights`].
+    pub fn area_lights(&self) -> impl Iterator<Item = &AreaLight> {
+        self.lights.iter().filter_map(|l| match l {
+            Light::Area(a) => Some(a),
+            _ => None,
+        })
+    }
+
+    /// The environment (`[environment]`), if the scene has one.
+    #[inline]
+    pub fn environment(&self) -> Option<&Environment> {
+        match self.lights.get(self.environment_light?) {
+            Some(Light::Environment(e)) => Some(e),
+            _ => None,
+        }
     }
 
     /// Closest hit of a world ray in `(0, t_max)`, with its surface details.

@@ -3,6 +3,7 @@
 //! light to light it by.
 
 use super::{IntegratorKind, Scene};
+use crate::light::Light;
 use crate::math::Color;
 use std::collections::BTreeMap;
 
@@ -12,13 +13,13 @@ impl Scene {
     /// neither lights anything); the path tracer finds no light in a scene without lights,
     /// emitting surfaces, environment or background.
     pub fn lighting_warning(&self) -> Option<String> {
-        if !self.lights.is_empty() {
+        if self.lights.iter().any(Light::is_delta) {
             return None;
         }
         let emits = self.materials.iter().any(|m| m.emission.is_some());
         match self.settings.integrator.kind {
             IntegratorKind::Whitted => {
-                let others = match (self.environment.is_some(), emits) {
+                let others = match (self.environment().is_some(), emits) {
                     (true, true) => " (Whitted shows the environment and emitting surfaces but lights nothing by them; the path tracer does: --integrator path)",
                     (true, false) => " (Whitted shows the environment but does not light with it; the path tracer does: --integrator path)",
                     (false, true) => " (Whitted shows emitting surfaces but lights nothing by them; the path tracer does: --integrator path)",
@@ -30,7 +31,7 @@ impl Scene {
             }
             IntegratorKind::Path => (!emits
                 && self.background == Color::ZERO
-                && self.environment.is_none())
+                && self.environment().is_none())
             .then(|| {
                 "the scene has no lights and a black background: the path tracer's image will be black"
                     .into()
@@ -58,13 +59,15 @@ impl Scene {
         }
         let kinds: Vec<String> = kinds.iter().map(|(k, n)| format!("{n} {k}")).collect();
         let mut lights: BTreeMap<&str, usize> = BTreeMap::new();
-        for l in &self.lights {
+        // The environment has a line of its own.
+        let counted = self
+            .lights
+            .iter()
+            .filter(|l| !matches!(l, Light::Environment(_)));
+        for l in counted.clone() {
             *lights.entry(l.kind_name()).or_default() += 1;
         }
-        if !self.area_lights.is_empty() {
-            lights.insert("area", self.area_lights.len());
-        }
-        let count = self.lights.len() + self.area_lights.len();
+        let count = counted.count();
         let lights = if count == 0 {
             "none".to_string()
         } else {
@@ -75,11 +78,11 @@ impl Scene {
         // Lines for an animation and for meshes, where the scene has them.
         let mut extra = String::new();
         let st = &self.stats;
-        if let Some(env) = &self.environment {
+        if let (Some(env), Some(i)) = (self.environment(), self.environment_light) {
             extra += &format!(
                 "\nenvironment: {}; {:.0} % of light samples",
                 env.describe(),
-                100.0 * self.light_sampler.environment_probability()
+                100.0 * self.light_sampler.probability(i)
             );
         }
         if let Some(a) = self.animation {

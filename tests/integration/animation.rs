@@ -179,16 +179,18 @@ intensity = 2
     );
     // Intensity 0 -> 2 over frames 0..12: 1 at frame 6; the colour has one key: held.
     match s.lights[0] {
-        snell::light::Light::Point {
+        snell::light::Light::Point(snell::light::PointLight {
             color, position, ..
-        } => {
+        }) => {
             assert!(close(color, [1.0, 0.0, 0.0]), "{color}");
             assert!(close(position, [0.0, 5.0, 5.0]));
         }
         ref l => panic!("{l:?}"),
     }
     match at(&path, 24).lights[0] {
-        snell::light::Light::Point { color, .. } => assert!(close(color, [2.0, 0.0, 0.0])),
+        snell::light::Light::Point(snell::light::PointLight { color, .. }) => {
+            assert!(close(color, [2.0, 0.0, 0.0]))
+        }
         ref l => panic!("{l:?}"),
     }
     assert_eq!(s.animation.map(|a| (a.frames, a.fps)), Some((25, 12.0)));

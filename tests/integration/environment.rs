@@ -146,7 +146,7 @@ fn a_sky_with_a_sun_lights_a_floor_with_its_integral() {
         let scene = load(&text, &dir);
         // Irradiance on the floor, E = integral of L cos(theta) over the upper hemisphere,
         // by the midpoint rule on a grid far finer than the texels; out goes albedo E / pi.
-        let env = scene.environment.as_ref().unwrap();
+        let env = scene.environment().unwrap();
         let e = floor_irradiance(|d| env.radiance(d));
         let expect = e * (albedo / PI);
         let got = mean(&image(&scene, &PathTracer).pixels);

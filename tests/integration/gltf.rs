@@ -303,7 +303,7 @@ fn a_files_camera_places_the_view() {
 /// the object's transform, their photometric intensities over 683 lm/W.
 #[test]
 fn a_files_lights_join_the_scene() {
-    use snell::light::{Falloff, Light};
+    use snell::light::{DirectionalLight, Falloff, Light, PointLight, SpotLight};
     let scene = scene_text(
         "[camera]\nlook_at = [0, 0, -1]\n[[objects]]\ntype = \"mesh\"\nfile = \"lit.gltf\"\n\
          lights = true\ntransform = { translate = [1, 0, 0] }\n",
@@ -312,11 +312,11 @@ fn a_files_lights_join_the_scene() {
     assert_eq!(scene.lights.len(), 3, "{:?}", scene.lights);
     let close = |a: Vec3A, b: Vec3A| (a - b).length() < 1e-5;
     match scene.lights[0] {
-        Light::Point {
+        Light::Point(PointLight {
             position,
             color,
             falloff,
-        } => {
+        }) => {
             assert!(close(position, Vec3A::new(1.0, 2.0, 3.0)), "{position}");
             assert!(close(color, Vec3A::new(1.0, 0.0, 0.0)), "{color}");
             assert_eq!(falloff, Some(Falloff::InverseSquare));
@@ -324,14 +324,14 @@ fn a_files_lights_join_the_scene() {
         ref l => panic!("{l:?}"),
     }
     match scene.lights[1] {
-        Light::Spot {
+        Light::Spot(SpotLight {
             position,
             direction,
             color,
             cos_outer,
             cos_inner,
             ..
-        } => {
+        }) => {
             assert!(close(position, Vec3A::new(1.0, 0.0, 4.0)), "{position}");
             assert!(close(direction, Vec3A::NEG_Z), "{direction}");
             assert!(close(color, Vec3A::splat(2.0)), "{color}");
@@ -342,7 +342,7 @@ fn a_files_lights_join_the_scene() {
         ref l => panic!("{l:?}"),
     }
     match scene.lights[2] {
-        Light::Directional { direction, color } => {
+        Light::Directional(DirectionalLight { direction, color }) => {
             assert!(close(direction, Vec3A::NEG_Y), "{direction}");
             assert!(close(color, Vec3A::splat(2.0)), "{color}");
         }

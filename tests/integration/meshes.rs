@@ -267,5 +267,5 @@ fn mtl_materials_map_onto_the_physically_based_types() {
         ))
     );
     // The lamp's triangle is a light the path tracer samples.
-    assert_eq!(scene.area_lights.len(), 1);
+    assert_eq!(scene.area_lights().count(), 1);
 }

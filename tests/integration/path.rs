@@ -337,11 +337,7 @@ fn cornell_box_with_a_mesh_light_agrees_with_its_reference() {
         );
         let light = scene.objects.len() - 3;
         assert_eq!(scene.objects[light].name, "light");
-        let lamps: Vec<_> = scene
-            .area_lights
-            .iter()
-            .filter(|l| l.object == light)
-            .collect();
+        let lamps: Vec<_> = scene.area_lights().filter(|l| l.object == light).collect();
         assert_eq!(lamps.len(), 2, "one light per triangle: {object}");
         let area: f32 = lamps.iter().map(|l| l.emitter.area()).sum();
         assert!((area - 0.46 * 0.38).abs() < 1e-5, "{area}");

@@ -36,7 +36,7 @@ fn floor_mean(scene: &Scene) -> Color {
 /// (finer than the baked map's texels), the sun's disk as its radiance times its solid
 /// angle times the cosine of its height.
 fn irradiance(scene: &Scene) -> (Color, Color) {
-    let env = scene.environment.as_ref().unwrap();
+    let env = scene.environment().unwrap();
     let EnvironmentSource::Sky(sky) = &env.source else {
         panic!("not a sky")
     };
@@ -79,7 +79,7 @@ fn scale_and_sun_scale_do_what_they_say() {
     let double = floor_mean(&floor_under(&format!("{place}\nscale = 2"), 16));
     assert!((double - 2.0 * base).abs().max_element() < 1e-4 * base.max_element());
     let scene = floor_under(&format!("{place}\nsun_scale = 0"), 256);
-    let EnvironmentSource::Sky(sky) = &scene.environment.as_ref().unwrap().source else {
+    let EnvironmentSource::Sky(sky) = &scene.environment().unwrap().source else {
         panic!("not a sky")
     };
     assert!(sky.sun().is_none());

@@ -5,7 +5,7 @@
 //! directional light of E lux gives E / 683.
 
 use crate::camera::Projection;
-use crate::light::{Falloff, Light};
+use crate::light::{DirectionalLight, Falloff, Light, PointLight, SpotLight};
 use crate::math::{Color, Transform, Vec3A};
 use crate::mesh_file::gltf::{self, GltfLightKind};
 use crate::scene::diag::{DocPath, name_help};
@@ -196,23 +196,25 @@ impl Builder<'_> {
                 continue;
             }
             out.push(match l.kind {
-                GltfLightKind::Point => Light::Point {
+                GltfLightKind::Point => Light::Point(PointLight {
                     position,
                     color,
                     falloff: Some(Falloff::InverseSquare),
-                },
-                GltfLightKind::Directional => Light::Directional { direction, color },
+                }),
+                GltfLightKind::Directional => {
+                    Light::Directional(DirectionalLight { direction, color })
+                }
                 GltfLightKind::Spot { inner, outer } => {
                     let outer = outer.clamp(1e-4, std::f32::consts::FRAC_PI_2);
                     let inner = inner.clamp(0.0, outer);
-                    Light::Spot {
+                    Light::Spot(SpotLight {
                         position,
                         direction,
                         color,
                         cos_outer: outer.cos(),
                         cos_inner: inner.cos(),
                         falloff: Some(Falloff::InverseSquare),
-                    }
+                    })
                 }
             });
         }

@@ -169,15 +169,24 @@ impl Builder<'_> {
             }
         }
 
-        let (area_lights, area_light_of) =
-            emitters::area_lights(&objects, &materials, &textures, &mut self.warnings);
+        let area_light_of = emitters::area_lights(
+            &objects,
+            &materials,
+            &textures,
+            &mut self.warnings,
+            &mut lights,
+        );
+        let environment_light = environment.map(|e| {
+            lights.push(Light::Environment(e));
+            lights.len() - 1
+        });
         // The radius of the bounded objects' box, for a directional light's power.
         let radius = objects
             .iter()
             .filter_map(|o| o.world_bounds)
             .reduce(|a, b| a.union(&b))
             .map_or(1.0, |b| 0.5 * (b.max - b.min).length());
-        let light_sampler = LightSampler::new(&lights, &area_lights, environment.as_ref(), radius);
+        let light_sampler = LightSampler::new(&lights, radius);
         let start = std::time::Instant::now();
         let accel = Bvh::build(&objects);
         self.stats.object_bvh_time = start.elapsed();
@@ -272,7 +281,7 @@ impl Builder<'_> {
             camera,
             settings,
             background,
-            environment,
+            environment_light,
             ambient,
             fog,
             objects,
@@ -281,7 +290,6 @@ impl Builder<'_> {
             texture_names,
             material_names,
             lights,
-            area_lights,
             area_light_of,
             light_sampler,
             warnings: std::mem::take(&mut self.warnings),

@@ -5,19 +5,20 @@
 //! meets them, found by BSDF sampling alone, and the scene warns that they light it noisily.
 
 use crate::geometry::{Disk, Mesh, Rect, Shape, Sphere, Triangle};
-use crate::light::{AreaLight, Emitter, ObjectLights};
+use crate::light::{AreaLight, Emitter, Light, ObjectLights};
 use crate::material::{ColorParam, Material};
 use crate::math::{Transform, Vec3A};
 use crate::scene::Object;
 
-/// The area lights, and per object which of them it is.
+/// The area lights, added to `lights` (after its point, spot and directional lights), and
+/// per object which of them it is (indices into `lights`).
 pub(super) fn area_lights(
     objects: &[Object],
     materials: &[Material],
     textures: &[crate::texture::Texture],
     warnings: &mut Vec<String>,
-) -> (Vec<AreaLight>, Vec<ObjectLights>) {
-    let mut lights = vec![];
+    lights: &mut Vec<Light>,
+) -> Vec<ObjectLights> {
     let mut of_object = vec![ObjectLights::None; objects.len()];
     // Each emitting material's mean radiance (a texture's over its pattern), which a light's
     // power is taken from, and its texture.
@@ -41,7 +42,7 @@ pub(super) fn area_lights(
     };
     for (i, o) in objects.iter().enumerate() {
         if let Shape::Mesh(mesh) = &o.shape {
-            of_object[i] = mesh_lights(i, o, mesh, &emitting, &mut lights);
+            of_object[i] = mesh_lights(i, o, mesh, &emitting, lights);
             continue;
         }
         let Some(e) = emitting(o.material) else {
@@ -50,13 +51,13 @@ pub(super) fn area_lights(
         match emitter(&o.shape, o.transform.as_ref()) {
             Some(emitter) => {
                 of_object[i] = ObjectLights::Whole(lights.len() as u32);
-                lights.push(AreaLight {
+                lights.push(Light::Area(AreaLight {
                     emitter,
                     radiance: e.mean,
                     texture: e.texture,
                     two_sided: e.two_sided,
                     object: i,
-                });
+                }));
             }
             None => warnings.push(format!(
                 "object `{}`: the path tracer finds its emission only where paths happen to hit it, which is noisy; light sampling covers rectangles, disks, triangles, meshes and spheres (disks and spheres scaled evenly)",
@@ -64,7 +65,7 @@ pub(super) fn area_lights(
             )),
         }
     }
-    (lights, of_object)
+    of_object
 }
 
 /// What a light takes from an emitting material.
@@ -82,7 +83,7 @@ fn mesh_lights(
     o: &Object,
     mesh: &Mesh,
     emitting: &impl Fn(usize) -> Option<Emitting>,
-    lights: &mut Vec<AreaLight>,
+    lights: &mut Vec<Light>,
 ) -> ObjectLights {
     let material_of = |prim: u32| {
         if o.slot_materials.is_empty() {
@@ -125,13 +126,13 @@ fn mesh_lights(
             continue;
         };
         of_lane[prim as usize] = lights.len() as u32;
-        lights.push(AreaLight {
+        lights.push(Light::Area(AreaLight {
             emitter: Emitter::Triangle(triangle),
             radiance: e.mean,
             texture: e.texture,
             two_sided: e.two_sided,
             object: index,
-        });
+        }));
     }
     for lane in 0..of_lane.len() {
         of_lane[lane] = of_lane[mesh.own_prim(lane as u32) as usize];

@@ -3,7 +3,7 @@
 //! intensity.
 
 use super::Builder;
-use crate::light::Light;
+use crate::light::{DirectionalLight, Light, PointLight, SpotLight};
 use crate::math::Vec3A;
 use crate::scene::diag::DocPath;
 use crate::scene::format::LightDef;
@@ -17,22 +17,22 @@ impl Builder<'_> {
                 color,
                 intensity,
                 ..
-            } => Light::Point {
+            } => Light::Point(PointLight {
                 position: self.point(*position, &path.key("position")),
                 color: self.color(*color, &path.key("color"))
                     * self.non_negative(*intensity, &path.key("intensity")),
                 falloff: *falloff,
-            },
+            }),
             LightDef::Directional {
                 direction,
                 color,
                 intensity,
                 ..
-            } => Light::Directional {
+            } => Light::Directional(DirectionalLight {
                 direction: self.direction(*direction, &path.key("direction")),
                 color: self.color(*color, &path.key("color"))
                     * self.non_negative(*intensity, &path.key("intensity")),
-            },
+            }),
             LightDef::Spot {
                 position,
                 falloff,
@@ -82,7 +82,7 @@ impl Builder<'_> {
                     self.error(path.key("angle"), format!("the cone's half-angle must be between 0 and 180 degrees (exclusive), not {angle}"));
                 }
                 let soft = self.in_range(*soft_edge, 0.0, angle.max(0.0), &path.key("soft_edge"));
-                Light::Spot {
+                Light::Spot(SpotLight {
                     position,
                     direction,
                     color: self.color(*color, &path.key("color"))
@@ -90,7 +90,7 @@ impl Builder<'_> {
                     cos_outer: angle.to_radians().cos(),
                     cos_inner: (angle - soft).to_radians().cos(),
                     falloff: *falloff,
-                }
+                })
             }
         }
     }
