@@ -52,7 +52,7 @@ INTRO = {
  'src/accel/wide/': 'The eight-wide BVH a mesh walks, and its SIMD node test.',
  'src/bsdf/': 'BSDFs: pure functions of two directions in the shading frame, one file each implementing `Scatter`, which the `Bsdf` enum forwards to (`closed_set!`). Every BSDF passes harness.rs; those with a Mitsuba namesake pass mitsuba_tests.rs.',
  'src/material/': 'Materials as a scene file states them, textured, one file per `type`; each gives the BSDF at a point (path tracer) or the Phong terms (Whitted).',
- 'src/texture/': 'Textures and what reads them: patterns, images with their MIP maps and wraps, mappings from surface points to uv, and filtering over a pixel\'s footprint.',
+ 'src/texture/': 'Textures and what reads them: patterns (one file each implementing `Paint`, which the `Pattern` enum forwards to), images with their MIP maps and wraps, mappings from surface points to uv, and filtering over a pixel\'s footprint.',
  'src/light/': 'Every light behind one interface, `Emit`, in one list (`Light`, through `closed_set!`): point, spot, directional, area lights and the environment; and the choice of a light for next-event estimation.',
  'src/light/sky/': 'The daylight sky and its sun.',
  'src/mesh_file/': 'Mesh files read into plain mesh data (no scene types): OBJ with MTL, PLY, glTF.',

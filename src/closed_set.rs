@@ -1,5 +1,5 @@
-//! The one way a family of variants is put together (shapes, BSDFs and lights; texture
-//! patterns are still matched by hand): [`closed_set!`] declares the family's trait, the enum of its variants, and the
+//! The one way a family of variants is put together (shapes, BSDFs, lights and texture
+//! patterns): [`closed_set!`] declares the family's trait, the enum of its variants, and the
 //! trait for the enum forwarding each method to the variant inside, so a family's variants
 //! are matched in one place and adding one is its file plus one line in the enum.
 //!

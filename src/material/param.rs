@@ -62,11 +62,11 @@ mod tests {
     #[test]
     fn parameters_read_their_texture_at_the_point() {
         let textures = vec![Texture {
-            pattern: Pattern::Stripes {
+            pattern: Pattern::Stripes(crate::texture::Stripes {
                 a: Color::new(0.3, 0.6, 0.9),
                 b: Color::new(1.0, 2.0, 3.0),
                 width: 0.5,
-            },
+            }),
             mapping: Mapping::Uv,
             wrap: crate::texture::Wraps::REPEAT,
         }];

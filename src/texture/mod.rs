@@ -3,46 +3,75 @@
 //! cylindrical or planar).
 
 mod antialias;
+mod checker;
 mod image;
+mod image_paint;
 mod mapping;
 mod mipmap;
+mod solid;
+mod stripes;
 mod wrap;
 
+pub use checker::{Checker, checker_parity};
 pub use image::{
     ColorSpace, ImageData, ImageLoadError, decode, in_guarded_decoder, srgb_to_linear,
 };
 pub use mapping::{Footprint, Mapping, TexturePoint};
+pub use stripes::Stripes;
 pub use wrap::{Wrap, Wraps};
 
 use crate::math::{Color, Vec2};
 use std::sync::Arc;
 
-/// What a texture shows, as a function of texture coordinates.
-#[derive(Clone, Debug)]
-pub enum Pattern {
-    /// One colour everywhere.
-    Solid(Color),
-    /// An image, bilinearly filtered; outside `[0, 1]` as its texture's `wrap` says.
-    Image(Arc<ImageData>),
-    /// Squares of side `size`: `even` where `floor(u / size) + floor(v / size)` is even.
-    Checker {
-        /// Colour of cells with an even index sum (the cell with corner at (0, 0) and
-        /// positive coordinates).
-        even: Color,
-        /// Colour of the other cells.
-        odd: Color,
-        /// Side of a cell, in texture-coordinate units.
-        size: f32,
-    },
-    /// Bands across `u` of width `width`: `a` where `floor(u / width)` is even, else `b`.
-    Stripes {
-        /// Colour of even bands (starting at u = 0).
-        a: Color,
-        /// Colour of odd bands.
-        b: Color,
-        /// Width of a band, in texture-coordinate units.
-        width: f32,
-    },
+crate::closed_set! {
+    /// What every pattern gives, as a function of texture coordinates. Implemented by each
+    /// pattern in its file; [`Pattern`] forwards to them.
+    pub trait Paint {
+        /// The linear colour at `uv` (an image's outside `[0, 1]` as `wraps` says).
+        fn at(&self, uv: Vec2, wraps: Wraps) -> Color;
+
+        /// The colour averaged over the footprint at `uv` whose axes are `dx` and `dy`.
+        fn filtered(&self, uv: Vec2, dx: Vec2, dy: Vec2, wraps: Wraps) -> Color;
+
+        /// What it gives on average over the pattern, for an emitting texture's power.
+        fn mean(&self) -> Color;
+
+        /// Bytes of decoded image data it holds (0 for procedural patterns).
+        fn bytes(&self) -> usize {
+            0
+        }
+
+        /// The colour, where it is the same everywhere (so no coordinates are needed).
+        fn constant(&self) -> Option<Color> {
+            None
+        }
+    }
+
+    /// What a texture shows: one of a closed set, one file per pattern.
+    #[derive(Clone, Debug)]
+    pub enum Pattern {
+        /// One colour everywhere.
+        Solid(Color),
+        /// An image, bilinearly filtered; outside `[0, 1]` as its texture's `wrap` says.
+        Image(Arc<ImageData>),
+        /// Squares of two colours.
+        Checker(Checker),
+        /// Bands of two colours across `u`.
+        Stripes(Stripes),
+    }
+}
+
+/// The half-extent of a footprint along `u` and `v`, for the closed-form filters.
+#[inline]
+fn footprint_radius(dx: Vec2, dy: Vec2) -> Vec2 {
+    Vec2::new(dx.x.abs().max(dy.x.abs()), dx.y.abs().max(dy.y.abs()))
+}
+
+/// A mix of two colours: `w` is +1 for the first, -1 for the second (exactly the colour
+/// where both are the same).
+#[inline]
+fn mix(first: Color, second: Color, w: f32) -> Color {
+    second + (first - second) * (0.5 + 0.5 * w)
 }
 
 /// A pattern and the mapping that places it on a surface.
@@ -69,22 +98,14 @@ impl Texture {
 
     /// Bytes of decoded image data it holds (0 for procedural textures).
     pub fn bytes(&self) -> usize {
-        match &self.pattern {
-            Pattern::Image(img) => img.bytes(),
-            _ => 0,
-        }
+        self.pattern.bytes()
     }
 
     /// What the texture gives on average over its pattern (an image's mean texel, the mean
     /// of a checker's or stripes' two colours, whose cells are equal), for an emitting
     /// texture's power.
     pub fn mean(&self) -> Color {
-        match &self.pattern {
-            Pattern::Solid(c) => *c,
-            Pattern::Image(img) => img.mean(),
-            Pattern::Checker { even, odd, .. } => (*even + *odd) * 0.5,
-            Pattern::Stripes { a, b, .. } => (*a + *b) * 0.5,
-        }
+        self.pattern.mean()
     }
 
     /// The linear colour at a surface point, averaged over its footprint where it has one:
@@ -92,30 +113,14 @@ impl Texture {
     /// filter one footprint wide (see docs/scene-format.md, "Texture filtering").
     #[inline]
     pub fn eval(&self, p: &TexturePoint) -> Color {
-        match &self.pattern {
-            Pattern::Solid(c) => *c,
-            _ if p.area().is_some() => self.eval_filtered(p),
-            Pattern::Image(img) => {
-                let uv = self.mapping.uv(p);
-                img.sample_bilinear(uv, self.wraps())
-            }
-            Pattern::Checker { even, odd, size } => {
-                let uv = self.mapping.uv(p);
-                if checker_parity(uv, *size) == 0 {
-                    *even
-                } else {
-                    *odd
-                }
-            }
-            Pattern::Stripes { a, b, width } => {
-                let u = self.mapping.uv(p).x;
-                if (u / width).floor() as i64 & 1 == 0 {
-                    *a
-                } else {
-                    *b
-                }
-            }
+        if let Some(c) = self.pattern.constant() {
+            return c;
         }
+        if p.area().is_some() {
+            let (uv, dx, dy) = self.mapping.uv_footprint(p);
+            return self.pattern.filtered(uv, dx, dy, self.wraps());
+        }
+        self.pattern.at(self.mapping.uv(p), self.wraps())
     }
 
     /// The image's wrap modes as read through its mapping (a spherical one clamps v).
@@ -129,40 +134,6 @@ impl Texture {
             false => self.wrap,
         }
     }
-
-    /// [`Texture::eval`] over a footprint.
-    fn eval_filtered(&self, p: &TexturePoint) -> Color {
-        let (uv, dx, dy) = self.mapping.uv_footprint(p);
-        // A mix of two colours: `w` is +1 for the first, -1 for the second (exactly the
-        // colour where both are the same).
-        let mix = |first: Color, second: Color, w: f32| second + (first - second) * (0.5 + 0.5 * w);
-        let radius = Vec2::new(dx.x.abs().max(dy.x.abs()), dx.y.abs().max(dy.y.abs()));
-        match &self.pattern {
-            Pattern::Solid(c) => *c,
-            Pattern::Image(img) => mipmap::sample(img, uv, dx, dy, self.wraps()),
-            Pattern::Checker { even, odd, size } => {
-                let r = radius / *size;
-                let w = antialias::square_wave(uv.x / size, r.x)
-                    * antialias::square_wave(uv.y / size, r.y);
-                mix(*even, *odd, w)
-            }
-            Pattern::Stripes { a, b, width } => mix(
-                *a,
-                *b,
-                antialias::square_wave(uv.x / width, radius.x / width),
-            ),
-        }
-    }
-}
-
-/// 0 for cells where `floor(u / size) + floor(v / size)` is even, 1 otherwise. `floor`
-/// (not truncation toward zero) keeps every cell the same size across 0, which was the
-/// seed report's checkerboard bug.
-pub fn checker_parity(uv: Vec2, size: f32) -> u32 {
-    // Far-away uvs saturate the casts to i64::MAX; a wrapping sum keeps the parity (its low
-    // bit) exact where a plain `+` would overflow.
-    let i = ((uv.x / size).floor() as i64).wrapping_add((uv.y / size).floor() as i64);
-    (i & 1) as u32
 }
 
 #[cfg(test)]
@@ -220,11 +191,11 @@ mod tests {
         // The cell is white when floor((x - 10) / 3) + floor((z + 20) / 3) is even.
         let white = Color::ONE;
         let t = Texture {
-            pattern: Pattern::Checker {
+            pattern: Pattern::Checker(Checker {
                 even: white,
                 odd: Color::ZERO,
                 size: 3.0,
-            },
+            }),
             mapping: Mapping::planar(
                 crate::math::Vec3A::new(10.0, -15.0, -20.0),
                 crate::math::Vec3A::X,
@@ -247,11 +218,11 @@ mod tests {
     #[test]
     fn stripes_alternate_by_width() {
         let t = Texture {
-            pattern: Pattern::Stripes {
+            pattern: Pattern::Stripes(Stripes {
                 a: Color::ONE,
                 b: Color::ZERO,
                 width: 0.5,
-            },
+            }),
             mapping: Mapping::Uv,
             wrap: Wraps::REPEAT,
         };
@@ -265,20 +236,20 @@ mod tests {
     #[test]
     fn a_footprint_averages_checker_and_stripes() {
         let checker = Texture {
-            pattern: Pattern::Checker {
+            pattern: Pattern::Checker(Checker {
                 even: Color::ONE,
                 odd: Color::ZERO,
                 size: 0.5,
-            },
+            }),
             mapping: Mapping::Uv,
             wrap: Wraps::REPEAT,
         };
         let stripes = Texture {
-            pattern: Pattern::Stripes {
+            pattern: Pattern::Stripes(Stripes {
                 a: Color::new(1.0, 0.0, 0.0),
                 b: Color::new(0.0, 0.0, 1.0),
                 width: 0.5,
-            },
+            }),
             mapping: Mapping::Uv,
             wrap: Wraps::REPEAT,
         };

@@ -90,11 +90,11 @@ impl Builder<'_> {
                 size,
                 mapping,
             } => Texture {
-                pattern: Pattern::Checker {
+                pattern: Pattern::Checker(crate::texture::Checker {
                     even: self.color(*even, &path.key("even")),
                     odd: self.color(*odd, &path.key("odd")),
                     size: self.positive(*size, &path.key("size")),
-                },
+                }),
                 mapping: self.mapping(mapping, &path.key("mapping")),
                 wrap: Wraps::REPEAT,
             },
@@ -104,11 +104,11 @@ impl Builder<'_> {
                 width,
                 mapping,
             } => Texture {
-                pattern: Pattern::Stripes {
+                pattern: Pattern::Stripes(crate::texture::Stripes {
                     a: self.color(*a, &path.key("a")),
                     b: self.color(*b, &path.key("b")),
                     width: self.positive(*width, &path.key("width")),
-                },
+                }),
                 mapping: self.mapping(mapping, &path.key("mapping")),
                 wrap: Wraps::REPEAT,
             },
