@@ -4,8 +4,16 @@
 //! Whitted integrator's split: glass `transparency`, mirror `(1 - transparency) *
 //! reflectivity`, the base the rest.
 
-use super::{BsdfSample, Conductor, Dielectric, Lambert, Plastic, Scatter};
+use super::microfacet::Ggx;
+use super::{
+    BsdfSample, Coat, Conductor, ConductorFresnel, Dielectric, Lambert, Plastic, Scatter,
+    internal_diffuse_reflectance,
+};
 use crate::math::{Color, Vec2, Vec3A};
+
+/// The coat's index of refraction where a Phong material has a highlight (a typical varnish
+/// or plastic).
+pub const COAT_IOR: f32 = 1.5;
 
 /// The base a Phong material's diffuse and highlight become.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -60,6 +68,45 @@ enum Part<'a> {
 }
 
 impl PhongMix {
+    /// The mix for a base of reflectance `r` (each channel in `[0, 1]`), with a highlight
+    /// of GGX roughness `highlight` under a coat of index [`COAT_IOR`] (`None`: no highlight,
+    /// a Lambertian base), a mirror tinted `mirror_tint` and smooth glass of index `ior`,
+    /// weighed by [`PhongMix::weights`]. The coat passes light to the base as a smooth
+    /// boundary would (`Coat::Smooth`).
+    pub fn new(
+        r: Color,
+        highlight: Option<f32>,
+        mirror_tint: Color,
+        ior: f32,
+        reflectivity: f32,
+        transparency: f32,
+    ) -> Self {
+        let base = match highlight {
+            Some(alpha) => PhongBase::Plastic(Plastic {
+                r,
+                eta: COAT_IOR,
+                distribution: Ggx::isotropic(alpha),
+                coat: Coat::Smooth {
+                    fdr_int: coat_fdr(),
+                },
+            }),
+            None => PhongBase::Lambert(Lambert { r }),
+        };
+        PhongMix {
+            base,
+            mirror: Conductor {
+                fresnel: ConductorFresnel::One,
+                distribution: Ggx::isotropic(0.0),
+                tint: mirror_tint,
+            },
+            glass: Dielectric {
+                eta: ior,
+                distribution: Ggx::isotropic(0.0),
+            },
+            weights: PhongMix::weights(reflectivity, transparency),
+        }
+    }
+
     /// The mix's weights from a Phong material's `reflectivity` and `transparency`.
     pub fn weights(reflectivity: f32, transparency: f32) -> [f32; 3] {
         let glass = transparency.clamp(0.0, 1.0);
@@ -142,39 +189,30 @@ impl Scatter for PhongMix {
     }
 }
 
+/// [`internal_diffuse_reflectance`] of [`COAT_IOR`], worked out once.
+fn coat_fdr() -> f32 {
+    static FDR: std::sync::OnceLock<f32> = std::sync::OnceLock::new();
+    *FDR.get_or_init(|| internal_diffuse_reflectance(COAT_IOR))
+}
+
 #[cfg(test)]
 mod tests {
-    use super::super::microfacet::Ggx;
-    use super::super::{Bsdf, Coat, ConductorFresnel, harness, internal_diffuse_reflectance};
+    use super::super::{Bsdf, harness};
     use super::*;
 
+    /// The mix a Phong material of colour (0.8, 0.5, 0.2) makes, through the same
+    /// constructor the material uses.
     fn mix(highlight: bool, reflectivity: f32, transparency: f32) -> Bsdf {
         let r = Color::new(0.8, 0.5, 0.2);
-        let base = if highlight {
-            PhongBase::Plastic(Plastic {
-                r,
-                eta: 1.5,
-                distribution: Ggx::isotropic(0.2),
-                coat: Coat::Smooth {
-                    fdr_int: internal_diffuse_reflectance(1.5),
-                },
-            })
-        } else {
-            PhongBase::Lambert(Lambert { r })
-        };
-        Bsdf::Phong(PhongMix {
-            base,
-            mirror: Conductor {
-                fresnel: ConductorFresnel::One,
-                distribution: Ggx::isotropic(0.0),
-                tint: Color::ONE,
-            },
-            glass: Dielectric {
-                eta: 1.5,
-                distribution: Ggx::isotropic(0.0),
-            },
-            weights: PhongMix::weights(reflectivity, transparency),
-        })
+        let highlight = highlight.then_some(0.2);
+        Bsdf::Phong(PhongMix::new(
+            r,
+            highlight,
+            Color::ONE,
+            1.5,
+            reflectivity,
+            transparency,
+        ))
     }
 
     #[test]
