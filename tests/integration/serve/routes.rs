@@ -62,13 +62,22 @@ fn every_route_answers() {
     let mean = |i: &image::RgbImage| i.pixels().map(|p| p.0[0] as f64).sum::<f64>();
     assert!(mean(&b) > mean(&a), "two stops brighter");
     assert_eq!(status(p)["generation"], st["generation"], "no new render");
+    // Values are percent-decoded: `%61ces` is `aces`, `%2B2` is `+2`.
+    let encoded = get(p, "/frame.jpg?exposure=%2B2&tone=%61ces");
+    assert_eq!(encoded.status, 200);
+    assert_eq!(encoded.body, bright.body);
+    let mut refused = 0;
     for bad in [
         "/frame.jpg?tone=sepia",
         "/frame.jpg?exposure=x",
         "/frame.jpg?exposure=99",
+        "/frame.jpg?exposure=1&exposure=2",
+        "/frame.jpg?exposure=%ZZ",
     ] {
         assert_eq!(get(p, bad).status, 400, "{bad}");
+        refused += 1;
     }
+    assert_eq!(refused, 5);
     // Every debug view.
     for view in [
         "normal", "uv", "depth", "albedo", "object", "material", "bounces",
@@ -93,14 +102,23 @@ fn every_route_answers() {
     let screen = &doc["tree"]["hit"]["screen"];
     let (x, y) = (screen[0].as_f64().unwrap(), screen[1].as_f64().unwrap());
     assert!((x - 48.5).abs() < 0.5 && (y - 71.5).abs() < 0.5, "{screen}");
+    assert_eq!(
+        get(p, "/pick?x=4%38&y=71").json()["object"],
+        "diamond sphere"
+    );
+    let mut refused = 0;
     for bad in [
         "/explain",
         "/explain?x=96&y=0",
         "/explain?x=-1&y=3",
         "/pick?x=1",
+        "/pick?x=48&y=71&x=2",
+        "/pick?x=4.5&y=71",
     ] {
         assert_eq!(get(p, bad).status, 400, "{bad}");
+        refused += 1;
     }
+    assert_eq!(refused, 6);
     // The event stream starts with the status.
     let mut c = std::net::TcpStream::connect(("127.0.0.1", p)).unwrap();
     c.set_read_timeout(Some(std::time::Duration::from_secs(30)))

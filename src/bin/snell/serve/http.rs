@@ -8,7 +8,8 @@
 use super::preview::{Frame, Shared};
 use axum::Router;
 use axum::body::Body;
-use axum::extract::{DefaultBodyLimit, Path, RawQuery, Request, State};
+use axum::extract::rejection::QueryRejection;
+use axum::extract::{DefaultBodyLimit, Path, Query, Request, State};
 use axum::http::{HeaderValue, StatusCode, header};
 use axum::middleware::{self, Next};
 use axum::response::sse::{Event, KeepAlive, Sse};
@@ -190,23 +191,23 @@ async fn blocking(f: impl FnOnce() -> Response + Send + 'static) -> Response {
     })
 }
 
-/// A query string's values.
-struct Query(String);
-
-impl Query {
-    fn get(&self, key: &str) -> Option<&str> {
-        self.0
-            .split('&')
-            .filter_map(|kv| kv.split_once('='))
-            .find(|(k, _)| *k == key)
-            .map(|(_, v)| v)
-    }
-
-    /// The value of `key` as a `T`: `Ok(None)` when absent, `Err` when it is not one.
-    fn number<T: std::str::FromStr>(&self, key: &str) -> Result<Option<T>, ()> {
-        self.get(key).map(|v| v.parse().map_err(|_| ())).transpose()
-    }
+/// The query of `/frame.jpg`: both optional; percent-encoded values are decoded.
+#[derive(serde::Deserialize)]
+struct FrameQuery {
+    exposure: Option<f32>,
+    tone: Option<String>,
 }
+
+/// The query that names a pixel: `x=COLUMN&y=ROW`.
+#[derive(serde::Deserialize)]
+struct PixelQuery {
+    x: u32,
+    y: u32,
+}
+
+/// A query string read into `T` by axum (serde_urlencoded: percent-decoding, `+` as a
+/// space), or why it does not fit (a value of the wrong kind, a key given twice).
+type Asked<T> = Result<Query<T>, QueryRejection>;
 
 /// What a page shows besides the picture: the render's progress, the error, the camera.
 pub(crate) fn status(ctx: &Context) -> serde_json::Value {
@@ -296,9 +297,9 @@ async fn events(State(ctx): Ctx) -> Response {
 
 /// The newest frame as a JPEG, after `exposure` (stops) and `tone` (a curve's name), each
 /// the scene's where not given.
-async fn frame(State(ctx): Ctx, RawQuery(q): RawQuery) -> Response {
-    let q = Query(q.unwrap_or_default());
-    let exposure = match q.number::<f32>("exposure") {
+async fn frame(State(ctx): Ctx, q: Asked<FrameQuery>) -> Response {
+    let q = q.map(|Query(q)| q);
+    let exposure = match q.as_ref().map(|q| q.exposure) {
         Ok(e) if e.is_none_or(|e| e.is_finite() && e.abs() <= 20.0) => e,
         _ => {
             return error(
@@ -307,7 +308,8 @@ async fn frame(State(ctx): Ctx, RawQuery(q): RawQuery) -> Response {
             );
         }
     };
-    let curve = match q.get("tone").map(ToneCurve::from_name) {
+    let tone = q.ok().and_then(|q| q.tone);
+    let curve = match tone.as_deref().map(ToneCurve::from_name) {
         None => None,
         Some(Some(c)) => Some(c),
         Some(None) => return error(StatusCode::BAD_REQUEST, "tone is clamp, reinhard or aces"),
@@ -386,15 +388,14 @@ async fn view(State(ctx): Ctx, Path(file): Path<String>) -> Response {
 /// not, boxed: a response is large).
 fn scene_and_pixel(
     ctx: &Context,
-    q: Option<String>,
+    q: Asked<PixelQuery>,
 ) -> Result<(Arc<snell::Scene>, u32, u32), Box<Response>> {
     let Some(scene) = ctx.shared.lock().scene.clone() else {
         return Err(Box::new(error(StatusCode::NOT_FOUND, "no scene yet")));
     };
-    let q = Query(q.unwrap_or_default());
     let (w, h) = (scene.settings.width, scene.settings.height);
-    match (q.number::<u32>("x"), q.number::<u32>("y")) {
-        (Ok(Some(x)), Ok(Some(y))) if x < w && y < h => Ok((scene, x, y)),
+    match q {
+        Ok(Query(PixelQuery { x, y })) if x < w && y < h => Ok((scene, x, y)),
         _ => Err(Box::new(error(
             StatusCode::BAD_REQUEST,
             &format!("give the pixel as x=COLUMN&y=ROW inside the {w} x {h} picture"),
@@ -405,7 +406,7 @@ fn scene_and_pixel(
 /// The explain data of a pixel: the Whitted tree of the ray through its centre, or the path
 /// of sample 0 under the path tracer, as `snell explain --json` gives them, with each hit
 /// point's place on the picture (`screen`) for drawing.
-async fn explain(State(ctx): Ctx, RawQuery(q): RawQuery) -> Response {
+async fn explain(State(ctx): Ctx, q: Asked<PixelQuery>) -> Response {
     let (scene, x, y) = match scene_and_pixel(&ctx, q) {
         Ok(v) => v,
         Err(r) => return *r,
@@ -468,7 +469,7 @@ fn place_points(doc: &mut serde_json::Value, project: &dyn Fn(Vec3A) -> Option<(
 }
 
 /// The object and material under a pixel's centre.
-async fn pick(State(ctx): Ctx, RawQuery(q): RawQuery) -> Response {
+async fn pick(State(ctx): Ctx, q: Asked<PixelQuery>) -> Response {
     let (scene, x, y) = match scene_and_pixel(&ctx, q) {
         Ok(v) => v,
         Err(r) => return *r,
