@@ -14,11 +14,8 @@ from .cluster import connected, task_slots
 from .errors import FarmError
 from .pack import pack_scene
 from .report import Costs, Progress
-from .worker import AttemptLog, render_tile
+from .worker import AttemptLog, TileJob, render_tile
 
-#: The test hook: a file path; the first task to find it absent creates it and kills its
-#: own worker (SIGKILL) while snell runs, to show that a killed worker loses no frame.
-KILL_HOOK = "SNELL_FARM_TEST_KILL_ONCE"
 
 
 @dataclass
@@ -137,7 +134,6 @@ def run(spec: JobSpec, stream: Optional[TextIO] = None) -> Costs:
     for flag, value in (("--width", spec.width), ("--height", spec.height), ("--spp", spec.spp)):
         if value is not None:
             overrides += [flag, str(value)]
-    kill_marker = os.environ.get(KILL_HOOK) or None
 
     with connected(spec.address, spec.workers, spec.connect_timeout):
         import ray
@@ -149,7 +145,8 @@ def run(spec: JobSpec, stream: Optional[TextIO] = None) -> Costs:
             log: Any = ray.remote(num_cpus=0)(AttemptLog).remote()
         except Exception:
             log = None
-        pack_box = [ray.put(pack.data)]
+        tile_job = TileJob(snell_bin, [ray.put(pack.data)], pack.digest, pack.scene, overrides,
+                           spec.cpus_per_task)
         window = max(2 * costs.workers, len(regions) + costs.workers)
         progress = Progress(len(todo), len(job), spec.quiet, stream)
         render_start = time.perf_counter()
@@ -165,9 +162,7 @@ def run(spec: JobSpec, stream: Optional[TextIO] = None) -> Costs:
                     if task is None:
                         more = False
                         break
-                    ref = remote.remote(snell_bin, pack_box, pack.digest, pack.scene, task.frame,
-                                        task.region.arg(), overrides, spec.cpus_per_task, kill_marker,
-                                        log, task.key())
+                    ref = remote.remote(tile_job, task.frame, task.region.arg(), log, task.key())
                     pending[ref] = task
                 ready, _ = ray.wait(list(pending), num_returns=1, timeout=1.0)
                 if ready:

@@ -13,6 +13,7 @@ import subprocess
 import sys
 import tempfile
 import time
+from dataclasses import dataclass, field
 from typing import Any, Callable, Dict, List, Optional
 
 from .pack import unpack_cached
@@ -36,21 +37,6 @@ def _die_with_parent() -> None:  # pragma: no cover - runs in the child between 
         pass
 
 
-def _kill_hook(marker: Optional[str]) -> None:
-    """The test hook ``SNELL_FARM_TEST_KILL_ONCE``: the first task to find ``marker`` absent
-    creates it and kills its own worker process with SIGKILL (snell is running by then)."""
-    if not marker:
-        return
-    try:
-        fd = os.open(marker, os.O_CREAT | os.O_EXCL | os.O_WRONLY, 0o644)
-    except FileExistsError:
-        return
-    os.write(fd, f"killed worker {os.getpid()}\n".encode())
-    os.close(fd)
-    time.sleep(0.05)
-    os.kill(os.getpid(), signal.SIGKILL)
-
-
 def _scratch_folder() -> str:
     """A new folder for one task's output, named by this process; folders left by processes
     that died (a killed worker) are removed first."""
@@ -68,27 +54,37 @@ def _scratch_folder() -> str:
     return tempfile.mkdtemp(prefix=f"{os.getpid()}-", dir=root)
 
 
+@dataclass(frozen=True)
+class TileJob:
+    """What every task of a job shares: the snell binary, the packed scene and the flags.
+
+    ``pack_box`` is a one-element list holding the pack's ObjectRef (inside a list so that
+    Ray does not fetch it for every task: it is fetched only when a process has not
+    unpacked it yet); ``digest`` names the pack and ``scene`` the scene file inside it;
+    ``overrides`` are flags for every ``snell render``; ``threads`` its ``--threads``.
+    """
+
+    snell: str
+    pack_box: List[Any]
+    digest: str
+    scene: str
+    overrides: List[str] = field(default_factory=list)
+    threads: int = 1
+
+
 def render_tile(
-    snell: str,
-    pack_box: List[Any],
-    digest: str,
-    scene: str,
+    job: TileJob,
     frame: int,
     region: str,
-    overrides: List[str],
-    threads: int,
-    kill_marker: Optional[str] = None,
     attempts: Any = None,
     key: str = "",
     load: Optional[Callable[[], bytes]] = None,
 ) -> Dict[str, Any]:
-    """Render ``region`` (``X0,Y0,X1,Y1``) of frame ``frame`` of the packed scene.
+    """Render ``region`` (``X0,Y0,X1,Y1``) of frame ``frame`` of the job's packed scene.
 
-    ``pack_box`` is a one-element list holding the pack's ObjectRef (inside a list so that
-    Ray does not fetch it for every task: it is fetched only when this process has not
-    unpacked it yet); ``load`` replaces the fetch in tests. ``attempts`` is the job's
-    attempt log (an actor) or None. Returns ``{"exr": bytes, "snell_s", "unpack_s",
-    "node", "pid"}``; raises SnellFailed with snell's stderr when snell fails.
+    ``attempts`` is the job's attempt log (an actor) or None, and ``key`` the task's name in
+    it; ``load`` replaces the fetch of the pack in tests. Returns ``{"exr": bytes, "snell_s",
+    "unpack_s", "node", "pid"}``; raises SnellFailed with snell's stderr when snell fails.
     """
     if attempts is not None:
         import ray
@@ -99,13 +95,13 @@ def render_tile(
         def load() -> bytes:
             import ray
 
-            return ray.get(pack_box[0])
+            return ray.get(job.pack_box[0])
 
-    folder, unpack_s = unpack_cached(digest, load)
+    folder, unpack_s = unpack_cached(job.digest, load)
     scratch = _scratch_folder()
     output = os.path.join(scratch, "tile.exr")
-    command = [snell, "render", os.path.join(folder, scene), "--frames", str(frame), "--region", region,
-               "-o", output, "--quiet", "--threads", str(threads)] + list(overrides)
+    command = [job.snell, "render", os.path.join(folder, job.scene), "--frames", str(frame), "--region", region,
+               "-o", output, "--quiet", "--threads", str(job.threads)] + list(job.overrides)
     try:
         start = time.perf_counter()
         try:
@@ -118,8 +114,7 @@ def render_tile(
                 preexec_fn=_die_with_parent if sys.platform.startswith("linux") else None,
             )
         except OSError as err:
-            raise SnellFailed(f"cannot run {snell} on this worker: {err.strerror}") from None
-        _kill_hook(kill_marker)
+            raise SnellFailed(f"cannot run {job.snell} on this worker: {err.strerror}") from None
         _, err_bytes = process.communicate()
         snell_s = time.perf_counter() - start
         stderr = err_bytes.decode("utf-8", "replace").strip()[-STDERR_LIMIT:]

@@ -7,7 +7,7 @@ import sys
 import pytest
 
 from snell_farm.pack import pack_scene
-from snell_farm.worker import SnellFailed, render_tile
+from snell_farm.worker import SnellFailed, TileJob, render_tile
 
 FAKE = """#!{python}
 import os, sys
@@ -43,12 +43,12 @@ def setup(tmp_path, monkeypatch):
 
 def test_render_tile_runs_snell_in_the_unpacked_scene(setup):
     pack, fake, tmp_path = setup
-    result = render_tile(fake, [None], pack.digest, pack.scene, 2, "0,0,24,16", ["--spp", "1"], 3,
-                         load=lambda: pack.data)
+    job = TileJob(fake, [None], pack.digest, pack.scene, ["--spp", "1"], 3)
+    result = render_tile(job, 2, "0,0,24,16", load=lambda: pack.data)
     assert result["exr"].decode() == ("--frames 2 --region 0,0,24,16 -o OUT --quiet --threads 3 --spp 1 "
                                       "cwd_has_scene=True")
     assert result["snell_s"] > 0 and result["unpack_s"] > 0
-    again = render_tile(fake, [None], pack.digest, pack.scene, 3, "0,0,24,16", [], 1, load=lambda: 1 / 0)
+    again = render_tile(TileJob(fake, [None], pack.digest, pack.scene), 3, "0,0,24,16", load=lambda: 1 / 0)
     assert again["unpack_s"] == 0.0  # unpacked once per process: the pack is not loaded again
     assert os.listdir(tmp_path / "tmp" / "snell-farm" / "tiles") == []
 
@@ -60,7 +60,7 @@ def test_render_tile_removes_what_dead_workers_left(setup):
     (tiles / f"{dead.stdout.strip()}-abc").mkdir(parents=True)
     (tiles / f"{dead.stdout.strip()}-abc" / "tile.exr").write_bytes(b"half")
     (tiles / f"{os.getppid()}-live").mkdir()
-    render_tile(fake, [None], pack.digest, pack.scene, 0, "0,0,1,1", [], 1, load=lambda: pack.data)
+    render_tile(TileJob(fake, [None], pack.digest, pack.scene), 0, "0,0,1,1", load=lambda: pack.data)
     assert os.listdir(tiles) == [f"{os.getppid()}-live"]
 
 
@@ -68,11 +68,11 @@ def test_render_tile_raises_with_snells_stderr(setup, monkeypatch):
     pack, fake, _ = setup
     monkeypatch.setenv("FAKE_FAIL", "1")
     with pytest.raises(SnellFailed, match=r"exited with status 1 \(frame 0, region 0,0,1,1\):\nerror: out of cheese"):
-        render_tile(fake, [None], pack.digest, pack.scene, 0, "0,0,1,1", [], 1, load=lambda: pack.data)
+        render_tile(TileJob(fake, [None], pack.digest, pack.scene), 0, "0,0,1,1", load=lambda: pack.data)
 
 
 def test_render_tile_without_snell(setup):
     pack, _, tmp_path = setup
     with pytest.raises(SnellFailed, match="cannot run"):
-        render_tile(str(tmp_path / "nothing"), [None], pack.digest, pack.scene, 0, "0,0,1,1", [], 1,
+        render_tile(TileJob(str(tmp_path / "nothing"), [None], pack.digest, pack.scene), 0, "0,0,1,1",
                     load=lambda: pack.data)
