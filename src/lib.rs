@@ -21,6 +21,7 @@ pub mod accel;
 pub mod bsdf;
 pub mod camera;
 pub mod checkpoint;
+pub mod explain_pixel;
 pub mod film;
 pub mod geometry;
 pub mod integrator;

@@ -2,8 +2,6 @@
 
 use crate::args::ExplainArgs;
 use crate::{check_size_and_spp, load, usage_error};
-use snell::integrator::Whitted;
-use snell::integrator::explain::TreeRecorder;
 use std::process::ExitCode;
 
 pub(crate) fn explain(args: ExplainArgs) -> ExitCode {
@@ -76,25 +74,17 @@ pub(crate) fn explain(args: ExplainArgs) -> ExitCode {
     let lens = args
         .sample
         .map(|k| snell::render::whitted_lens_sample(s, x, y, k));
-    let Some((color, rays, tree)) = whitted_tree(&scene, film, lens, args.max_rays) else {
+    let Some(explained) = snell::explain_pixel::whitted(&scene, film, lens, args.max_rays) else {
         eprintln!("error: no ray was recorded");
         return ExitCode::from(1);
     };
+    let (color, rays, tree) = (explained.color, &explained.rays, &explained.tree);
     let which = match args.sample {
         None => "the ray through its centre".to_string(),
         Some(k) => format!("sample {k} of {}", scene.settings.spp),
     };
     if args.json {
-        let doc = whitted_json(
-            &scene,
-            &args.scene,
-            (x, y),
-            args.sample,
-            film,
-            color,
-            &rays,
-            &tree,
-        );
+        let doc = explained.to_json(&scene, &args.scene, (x, y), args.sample);
         match serde_json::to_string_pretty(&doc) {
             Ok(text) => outln!("{text}"),
             Err(e) => {
@@ -126,101 +116,18 @@ pub(crate) fn explain(args: ExplainArgs) -> ExitCode {
     ExitCode::SUCCESS
 }
 
-/// The Whitted tree of the ray through film position `film` (and the lens at `lens`, if the
-/// camera has one; its centre without): the colour it returns, the rays traced, and the
-/// tree (`None` when nothing was recorded).
-pub(crate) fn whitted_tree(
-    scene: &snell::Scene,
-    film: (f32, f32),
-    lens: Option<snell::math::Vec2>,
-    max_rays: usize,
-) -> Option<(
-    snell::math::Color,
-    snell::integrator::RayStats,
-    snell::integrator::explain::RayNode,
-)> {
-    let s = &scene.settings;
-    let camera = scene.camera.raster(s.width, s.height);
-    let ray = match lens {
-        Some(u) => camera.ray_lens(film.0, film.1, u),
-        None => camera.ray(film.0, film.1),
-    };
-    let mut rec = TreeRecorder::new(max_rays);
-    let mut rays = snell::integrator::RayStats::default();
-    let color = Whitted.explain(scene, &ray, &mut rays, &mut rec);
-    rec.finish().map(|tree| (color, rays, tree))
-}
-
-/// `explain --json`'s document for a Whitted tree.
-#[allow(clippy::too_many_arguments)]
-pub(crate) fn whitted_json(
-    scene: &snell::Scene,
-    scene_path: &std::path::Path,
-    pixel: (u32, u32),
-    sample: Option<u32>,
-    film: (f32, f32),
-    color: snell::math::Color,
-    rays: &snell::integrator::RayStats,
-    tree: &snell::integrator::explain::RayNode,
-) -> serde_json::Value {
-    serde_json::json!({
-        "scene": scene_path.display().to_string(),
-        "integrator": "whitted",
-        "image": [scene.settings.width, scene.settings.height],
-        "pixel": [pixel.0, pixel.1],
-        "sample": sample,
-        "film_position": [film.0, film.1],
-        "color": color.to_array(),
-        "rays_traced": { "camera": rays.camera, "secondary": rays.secondary, "shadow": rays.shadow },
-        "tree": tree,
-    })
-}
-
-/// The one path of sample `k` of pixel `(x, y)` under the path tracer, as `explain --json`
-/// gives it, with the path's record (for the text form).
-pub(crate) fn path_json(
-    scene: &snell::Scene,
-    scene_path: &std::path::Path,
-    (x, y): (u32, u32),
-    k: u32,
-) -> (
-    serde_json::Value,
-    snell::integrator::path_explain::PathRecord,
-    snell::math::Color,
-    snell::integrator::RayStats,
-    (f32, f32),
-) {
-    use snell::integrator::Path;
-    use snell::integrator::path_explain::PathRecord;
-    let s = &scene.settings;
-    let mut sampler = snell::sampler::Sampler::new(s.integrator.sampler, s.seed);
-    let (px, py, _) = snell::render::start_sample(s, &mut sampler, x, y, k);
-    let camera = scene.camera.raster(s.width, s.height);
-    let ray = snell::render::camera_ray(&camera, &mut sampler, px, py);
-    let mut rays = snell::integrator::RayStats::default();
-    let mut rec = PathRecord::default();
-    let color = Path.trace(scene, &ray, &mut sampler, &mut rays, &mut rec);
-    let doc = serde_json::json!({
-        "scene": scene_path.display().to_string(),
-        "integrator": "path",
-        "image": [s.width, s.height],
-        "pixel": [x, y],
-        "sample": k,
-        "film_position": [px, py],
-        "color": color.to_array(),
-        "sum_of_contributions": rec.total(),
-        "clamp": s.integrator.clamp,
-        "rays_traced": { "camera": rays.camera, "secondary": rays.secondary, "shadow": rays.shadow },
-        "path": &rec,
-    });
-    (doc, rec, color, rays, (px, py))
-}
-
 /// `explain` under the path tracer: the one path of sample `k`, as the renderer takes it.
 fn explain_path(args: &ExplainArgs, scene: &snell::Scene, k: u32) -> ExitCode {
     let s = &scene.settings;
     let (x, y) = args.pixel;
-    let (doc, rec, color, rays, (px, py)) = path_json(scene, &args.scene, (x, y), k);
+    let explained = snell::explain_pixel::path(scene, (x, y), k);
+    let doc = explained.to_json(scene, &args.scene);
+    let (rec, color, rays, (px, py)) = (
+        &explained.record,
+        explained.color,
+        &explained.rays,
+        explained.film,
+    );
     let total = rec.total();
     let clamped = s.integrator.clamp.filter(|c| total.iter().any(|t| t > c));
     if args.json {

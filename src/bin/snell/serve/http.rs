@@ -413,59 +413,12 @@ async fn explain(State(ctx): Ctx, q: Asked<PixelQuery>) -> Response {
     };
     blocking(move || {
         let path = &ctx.shared.settings.scene;
-        let mut doc = if scene.settings.integrator.kind == snell::scene::IntegratorKind::Path {
-            crate::explain::path_json(&scene, path, (x, y), 0).0
-        } else {
-            let film = (x as f32 + 0.5, y as f32 + 0.5);
-            match crate::explain::whitted_tree(&scene, film, None, 200) {
-                Some((color, rays, tree)) => crate::explain::whitted_json(
-                    &scene,
-                    path,
-                    (x, y),
-                    None,
-                    film,
-                    color,
-                    &rays,
-                    &tree,
-                ),
-                None => return error(StatusCode::INTERNAL_SERVER_ERROR, "no ray was recorded"),
-            }
-        };
-        let (w, h) = (scene.settings.width, scene.settings.height);
-        place_points(&mut doc, &|p| scene.camera.project(p, w, h));
-        json(&doc)
+        match snell::explain_pixel::pixel_json(&scene, path, (x, y), 200) {
+            Some(doc) => json(&doc),
+            None => error(StatusCode::INTERNAL_SERVER_ERROR, "no ray was recorded"),
+        }
     })
     .await
-}
-
-/// Adds `screen: [x, y]` (or null) beside every `point: [x, y, z]` in `doc`.
-fn place_points(doc: &mut serde_json::Value, project: &dyn Fn(Vec3A) -> Option<(f32, f32)>) {
-    match doc {
-        serde_json::Value::Object(map) => {
-            let point = map.get("point").and_then(|p| {
-                let a = p.as_array()?;
-                let v: Vec<f32> = a
-                    .iter()
-                    .filter_map(|c| c.as_f64())
-                    .map(|c| c as f32)
-                    .collect();
-                (v.len() == 3).then(|| Vec3A::new(v[0], v[1], v[2]))
-            });
-            if let Some(p) = point {
-                let screen = project(p).map(|(x, y)| vec![x, y]);
-                map.insert("screen".into(), serde_json::json!(screen));
-            }
-            for v in map.values_mut() {
-                place_points(v, project);
-            }
-        }
-        serde_json::Value::Array(items) => {
-            for v in items {
-                place_points(v, project);
-            }
-        }
-        _ => {}
-    }
 }
 
 /// The object and material under a pixel's centre.

@@ -1,0 +1,192 @@
+//! Why one pixel has its colour, asked of a loaded scene: the tree of rays behind one
+//! Whitted sample, or the one path of a path-traced sample, and the JSON document that
+//! `snell explain --json` prints and the preview's click shows. The command line, the
+//! preview server and scripts all ask here.
+
+use crate::Scene;
+use crate::integrator::explain::{RayNode, TreeRecorder};
+use crate::integrator::path_explain::PathRecord;
+use crate::integrator::{Path, RayStats, Whitted};
+use crate::math::{Color, Vec2, Vec3A};
+use serde_json::{Value, json};
+
+/// A Whitted sample explained: where it lies on the film, the colour it returns, the rays it
+/// traced and their tree.
+#[derive(Clone, Debug)]
+pub struct WhittedExplained {
+    /// The film position of the camera ray, in pixels.
+    pub film: (f32, f32),
+    /// The colour it returns, linear RGB.
+    pub color: Color,
+    /// The rays traced for it.
+    pub rays: RayStats,
+    /// The tree of rays.
+    pub tree: RayNode,
+}
+
+/// The Whitted tree of the ray through film position `film` (and the lens at `lens`, if the
+/// camera has one; its centre without), recording at most `max_rays` rays; `None` when
+/// nothing was recorded.
+pub fn whitted(
+    scene: &Scene,
+    film: (f32, f32),
+    lens: Option<Vec2>,
+    max_rays: usize,
+) -> Option<WhittedExplained> {
+    let s = &scene.settings;
+    let camera = scene.camera.raster(s.width, s.height);
+    let ray = match lens {
+        Some(u) => camera.ray_lens(film.0, film.1, u),
+        None => camera.ray(film.0, film.1),
+    };
+    let mut rec = TreeRecorder::new(max_rays);
+    let mut rays = RayStats::default();
+    let color = Whitted.explain(scene, &ray, &mut rays, &mut rec);
+    rec.finish().map(|tree| WhittedExplained {
+        film,
+        color,
+        rays,
+        tree,
+    })
+}
+
+impl WhittedExplained {
+    /// `explain --json`'s document: the scene file's name as `scene_path` gives it, the
+    /// pixel, and which sample (`None`: the ray through the pixel's centre).
+    pub fn to_json(
+        &self,
+        scene: &Scene,
+        scene_path: &std::path::Path,
+        pixel: (u32, u32),
+        sample: Option<u32>,
+    ) -> Value {
+        let r = &self.rays;
+        json!({
+            "scene": scene_path.display().to_string(),
+            "integrator": "whitted",
+            "image": [scene.settings.width, scene.settings.height],
+            "pixel": [pixel.0, pixel.1],
+            "sample": sample,
+            "film_position": [self.film.0, self.film.1],
+            "color": self.color.to_array(),
+            "rays_traced": { "camera": r.camera, "secondary": r.secondary, "shadow": r.shadow },
+            "tree": &self.tree,
+        })
+    }
+}
+
+/// A path-traced sample explained: its pixel and index, where it lies on the film, the
+/// colour it returns, the rays it traced and the record of its path.
+#[derive(Clone, Debug)]
+pub struct PathExplained {
+    /// The pixel, column and row.
+    pub pixel: (u32, u32),
+    /// Which of the pixel's samples.
+    pub sample: u32,
+    /// Its film position, in pixels.
+    pub film: (f32, f32),
+    /// The colour it returns, linear RGB (after the clamp, if the scene sets one).
+    pub color: Color,
+    /// The rays traced for it.
+    pub rays: RayStats,
+    /// The path, vertex by vertex.
+    pub record: PathRecord,
+}
+
+/// The one path of sample `k` of pixel `(x, y)` under the path tracer, the same random
+/// numbers as the render gives that sample.
+pub fn path(scene: &Scene, (x, y): (u32, u32), k: u32) -> PathExplained {
+    let s = &scene.settings;
+    let mut sampler = crate::sampler::Sampler::new(s.integrator.sampler, s.seed);
+    let (px, py, _) = crate::render::start_sample(s, &mut sampler, x, y, k);
+    let camera = scene.camera.raster(s.width, s.height);
+    let ray = crate::render::camera_ray(&camera, &mut sampler, px, py);
+    let mut rays = RayStats::default();
+    let mut record = PathRecord::default();
+    let color = Path.trace(scene, &ray, &mut sampler, &mut rays, &mut record);
+    PathExplained {
+        pixel: (x, y),
+        sample: k,
+        film: (px, py),
+        color,
+        rays,
+        record,
+    }
+}
+
+impl PathExplained {
+    /// `explain --json`'s document, with the scene file's name as `scene_path` gives it.
+    pub fn to_json(&self, scene: &Scene, scene_path: &std::path::Path) -> Value {
+        let s = &scene.settings;
+        let r = &self.rays;
+        json!({
+            "scene": scene_path.display().to_string(),
+            "integrator": "path",
+            "image": [s.width, s.height],
+            "pixel": [self.pixel.0, self.pixel.1],
+            "sample": self.sample,
+            "film_position": [self.film.0, self.film.1],
+            "color": self.color.to_array(),
+            "sum_of_contributions": self.record.total(),
+            "clamp": s.integrator.clamp,
+            "rays_traced": { "camera": r.camera, "secondary": r.secondary, "shadow": r.shadow },
+            "path": &self.record,
+        })
+    }
+}
+
+/// What the preview shows for a click on pixel `(x, y)`: the path of sample 0 under the path
+/// tracer, the ray through the pixel's centre under Whitted (at most `max_rays` of its
+/// tree), each hit point with its place on the picture ([`place_on_picture`]); `None` when
+/// nothing was recorded.
+pub fn pixel_json(
+    scene: &Scene,
+    scene_path: &std::path::Path,
+    (x, y): (u32, u32),
+    max_rays: usize,
+) -> Option<Value> {
+    let mut doc = if scene.settings.integrator.kind == crate::scene::IntegratorKind::Path {
+        path(scene, (x, y), 0).to_json(scene, scene_path)
+    } else {
+        let film = (x as f32 + 0.5, y as f32 + 0.5);
+        whitted(scene, film, None, max_rays)?.to_json(scene, scene_path, (x, y), None)
+    };
+    place_on_picture(&mut doc, scene);
+    Some(doc)
+}
+
+/// Adds `screen: [x, y]` (or null where the camera does not see it) beside every `point:
+/// [x, y, z]` in `doc`: where a hit point lies on the picture, for drawing a path over it.
+pub fn place_on_picture(doc: &mut Value, scene: &Scene) {
+    let (w, h) = (scene.settings.width, scene.settings.height);
+    place_points(doc, &|p| scene.camera.project(p, w, h));
+}
+
+fn place_points(doc: &mut Value, project: &dyn Fn(Vec3A) -> Option<(f32, f32)>) {
+    match doc {
+        Value::Object(map) => {
+            let point = map.get("point").and_then(|p| {
+                let a = p.as_array()?;
+                let v: Vec<f32> = a
+                    .iter()
+                    .filter_map(|c| c.as_f64())
+                    .map(|c| c as f32)
+                    .collect();
+                (v.len() == 3).then(|| Vec3A::new(v[0], v[1], v[2]))
+            });
+            if let Some(p) = point {
+                let screen = project(p).map(|(x, y)| vec![x, y]);
+                map.insert("screen".into(), json!(screen));
+            }
+            for v in map.values_mut() {
+                place_points(v, project);
+            }
+        }
+        Value::Array(items) => {
+            for v in items {
+                place_points(v, project);
+            }
+        }
+        _ => {}
+    }
+}
