@@ -64,6 +64,33 @@ pub enum JobError {
     },
 }
 
+impl std::fmt::Display for JobError {
+    /// The scene's problems as [`SceneError`] gives them; a settings message, then its help
+    /// after "help: ".
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            JobError::Scene(e) => e.fmt(f),
+            JobError::Settings {
+                message,
+                help: Some(help),
+            } => write!(f, "{message} (help: {help})"),
+            JobError::Settings {
+                message,
+                help: None,
+            } => f.write_str(message),
+        }
+    }
+}
+
+impl std::error::Error for JobError {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        match self {
+            JobError::Scene(e) => Some(e),
+            JobError::Settings { .. } => None,
+        }
+    }
+}
+
 /// A scene loaded, its settings overridden and checked: ready to render.
 #[derive(Debug)]
 pub struct RenderJob {
@@ -319,5 +346,29 @@ mod tests {
             RenderJob::default_output(Path::new("a/cap.day.toml")),
             Path::new("cap.day.png")
         );
+    }
+
+    /// A job's error reads as the command line prints it, so callers of the library (a
+    /// script, the Python module) can show it as it is.
+    #[test]
+    fn a_job_error_says_what_and_how() {
+        let e = settings_error(
+            "--spp must be at least 1",
+            Some("give --spp 1 or more".into()),
+        );
+        assert_eq!(
+            e.to_string(),
+            "--spp must be at least 1 (help: give --spp 1 or more)"
+        );
+        assert_eq!(settings_error("no", None).to_string(), "no");
+        let missing = RenderJob::prepare(
+            Path::new("no/such/scene.toml"),
+            &Overrides::default(),
+            &Limits::default(),
+            None,
+        )
+        .unwrap_err();
+        assert!(missing.to_string().contains("scene.toml"), "{missing}");
+        assert!(std::error::Error::source(&missing).is_some());
     }
 }

@@ -3,7 +3,26 @@
 //! The data flows one way: a scene file is parsed and checked ([`scene::load`]) into an
 //! immutable [`Scene`], rendered over all cores ([`render::render`]) by an integrator
 //! ([`integrator::Whitted`]) into an [`film::Image`], and written atomically
-//! ([`output::write_image`]).
+//! ([`output::write_image`]). [`render::to_files::render_to_files`] does all of it for a
+//! prepared [`job::RenderJob`], as `snell render` does, with progress and cancellation as
+//! callbacks:
+//!
+//! ```no_run
+//! use snell::render::to_files::{RunOptions, render_to_files};
+//! use std::path::Path;
+//! let job = snell::job::RenderJob::prepare(
+//!     Path::new("scenes/seed.toml"),
+//!     &Default::default(), // no overrides of the scene's settings
+//!     &Default::default(), // the default limits
+//!     None,                // no checkpoint to resume
+//! )?;
+//! let progress = |p: snell::render::to_files::JobProgress| eprint!("\r{} of {}", p.done, p.total);
+//! let options = RunOptions { threads: None, progress: &progress, cancel: None, time: None };
+//! render_to_files(&job, Path::new("seed.png"), &[], &options)?;
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+//!
+//! Or step by step:
 //!
 //! ```no_run
 //! let scene = snell::scene::load(std::path::Path::new("scenes/seed.toml"))?;

@@ -17,6 +17,7 @@ pub mod pass;
 mod pixel;
 pub mod progressive;
 mod tiles;
+pub mod to_files;
 
 pub use crate::film::Region;
 pub use crate::film::TILE;

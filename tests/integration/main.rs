@@ -17,6 +17,7 @@ mod gltf_unread;
 mod groups;
 mod inputs_kept;
 mod khronos;
+mod library;
 mod meshes;
 mod optics;
 mod path;

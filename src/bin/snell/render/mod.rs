@@ -9,7 +9,8 @@ use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use snell::checkpoint::{Checkpoint, CheckpointIntegrator};
 use snell::integrator::aov::Aov;
 use snell::job::RenderJob;
-use snell::output::{OutputError, OutputFormat, PendingOutput};
+use snell::output::OutputError;
+use snell::render::to_files::Outputs;
 
 mod frames;
 mod outputs;
@@ -109,7 +110,7 @@ fn render_job(
     if let Some(code) = outputs::refuse_outputs_over_inputs(args, &scene, &scene_path, &out_path) {
         return code;
     }
-    let mut pending = match PendingOutput::create(&out_path) {
+    let mut pending = match Outputs::reserve(&out_path, &[]) {
         Ok(p) => p,
         Err(e @ OutputError::UnknownFormat(_)) => return usage_error(&e.to_string(), None),
         Err(e) => {
@@ -154,17 +155,9 @@ fn render_job(
         );
     }
     // Separate PNGs are reserved now, like the picture, so a bad path fails before rendering.
-    let mut aov_outputs = vec![];
-    if pending.format() == OutputFormat::Png {
-        for &a in &aovs {
-            match PendingOutput::create(&outputs::aov_path(&out_path, a)) {
-                Ok(p) => aov_outputs.push((a, p)),
-                Err(e) => {
-                    eprintln!("error: {e}");
-                    return ExitCode::from(1);
-                }
-            }
-        }
+    if let Err(e) = pending.add_views(&aovs) {
+        eprintln!("error: {e}");
+        return ExitCode::from(1);
     }
     if !args.quiet {
         for w in &scene.warnings {
@@ -241,9 +234,6 @@ fn render_job(
     if !outcome.complete {
         // An unfinished picture never replaces a finished one: it goes beside it.
         pending.make_partial();
-        for (_, out) in &mut aov_outputs {
-            out.make_partial();
-        }
     }
     let written = if let Some(r) = args.region {
         pending
@@ -255,12 +245,10 @@ fn render_job(
                 outcome.complete.then_some(fingerprint),
             )
             .map_err(|e| e.to_string())
-    } else if aovs.is_empty() {
-        pending
-            .commit_toned(&outcome.image, &scene.settings.tone)
-            .map_err(|e| e.to_string())
     } else {
-        outputs::write_aovs(&scene, threads, &outcome, pending, &aovs, aov_outputs)
+        pending
+            .commit(&scene, &outcome.image, outcome.film.as_ref(), threads)
+            .map_err(|e| e.to_string())
     };
     if let Err(e) = written {
         eprintln!("error: {e}");
@@ -290,7 +278,7 @@ fn render_job(
     // The picture is whole: an interrupted run's partial pictures of it are out of date.
     let _ = std::fs::remove_file(snell::output::partial_path(&out_path));
     for &a in &aovs {
-        let _ = std::fs::remove_file(snell::output::partial_path(&outputs::aov_path(
+        let _ = std::fs::remove_file(snell::output::partial_path(&Outputs::view_path(
             &out_path, a,
         )));
     }

@@ -1,23 +1,11 @@
-//! A render's output files beyond its one picture: where each debug view (`--aov`) goes,
-//! the refusal of any output that would replace a file the render reads, and the writing
-//! of the picture together with its views (one EXR, or a PNG each).
+//! The refusal of any output of a render (its picture, partial picture, debug views or
+//! checkpoint) that would replace a file the render reads.
 
-use super::Outcome;
 use crate::args::RenderArgs;
 use crate::usage_error;
-use snell::integrator::aov::Aov;
-use snell::output::{ExrLayer, OutputFormat, PendingOutput, encode_exr_layers};
-use snell::render::render_aovs;
+use snell::render::to_files::Outputs;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
-
-/// `out.png` with a view's name before the extension: `out.normal.png`.
-pub(super) fn aov_path(out: &Path, aov: Aov) -> PathBuf {
-    let mut name = out.file_stem().unwrap_or_default().to_os_string();
-    name.push(format!(".{}.", aov.name()));
-    name.push(out.extension().unwrap_or_default());
-    out.with_file_name(name)
-}
 
 /// Refuses (exit 2, before any work) a render whose picture, its partial picture, a view
 /// (`--aov`) or its checkpoint would replace a file the render reads: the scene file, its
@@ -35,7 +23,7 @@ pub(super) fn refuse_outputs_over_inputs(
     ];
     for list in &args.aov {
         for &a in list {
-            let p = aov_path(out_path, a);
+            let p = Outputs::view_path(out_path, a);
             outputs.push(snell::output::partial_path(&p));
             outputs.push(p);
         }
@@ -63,36 +51,4 @@ pub(super) fn refuse_outputs_over_inputs(
         ),
         Some("name another output (-o FILE)"),
     ))
-}
-
-/// Writes the picture and its debug views: one multi-layer EXR, or a PNG per view.
-pub(super) fn write_aovs(
-    scene: &snell::Scene,
-    threads: Option<usize>,
-    outcome: &Outcome,
-    pending: PendingOutput,
-    aovs: &[Aov],
-    pngs: Vec<(Aov, PendingOutput)>,
-) -> Result<(), String> {
-    let image = &outcome.image;
-    let mut buffers = render_aovs(scene, threads).map_err(|e| e.to_string())?;
-    if let Some(film) = &outcome.film {
-        buffers.set_variance(film);
-    }
-    if pending.format() == OutputFormat::Exr {
-        let layers: Vec<ExrLayer> = aovs
-            .iter()
-            .map(|&a| (a.name(), buffers.channels(a)))
-            .collect();
-        let bytes = encode_exr_layers(image, &layers, pending.path()).map_err(|e| e.to_string())?;
-        return pending.commit_bytes(&bytes).map_err(|e| e.to_string());
-    }
-    pending
-        .commit_toned(image, &scene.settings.tone)
-        .map_err(|e| e.to_string())?;
-    for (a, out) in pngs {
-        out.commit(&buffers.display(a, scene.settings.max_depth))
-            .map_err(|e| e.to_string())?;
-    }
-    Ok(())
 }

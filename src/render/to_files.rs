@@ -1,0 +1,277 @@
+//! A prepared job rendered to its files: the one entry point a caller (the command line,
+//! a script, the Python module) needs beyond a scene and an output path, with progress and
+//! cancellation as callbacks. The scene's integrator decides the way: the path tracer in
+//! passes of a film of sums (1, 2, 4 ... samples per pixel, so a cancelled render still
+//! has every pixel), Whitted tile by tile. The picture and its debug views are reserved
+//! before the render starts (a bad path fails before any work) and written atomically; an
+//! unfinished picture goes beside the old one (`x.partial.png`), never over it.
+
+use super::progressive::{Ended, PassEvent, Until, film_samples, render_progressive};
+use super::{BadSamples, PassError, RenderError, RenderOptions, render_aovs, render_with};
+use crate::Scene;
+use crate::film::{Film, Image};
+use crate::integrator::aov::Aov;
+use crate::integrator::{self, RayStats};
+use crate::job::RenderJob;
+use crate::output::{ExrLayer, OutputError, OutputFormat, PendingOutput, encode_exr_layers};
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
+use std::time::Duration;
+
+/// How far a render has come: `done` of `total` samples (pixels times samples per pixel).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct JobProgress {
+    /// Samples taken.
+    pub done: u64,
+    /// Samples to take.
+    pub total: u64,
+}
+
+/// How a job is run.
+#[derive(Clone, Copy)]
+pub struct RunOptions<'a> {
+    /// Render threads; `None` uses every core.
+    pub threads: Option<usize>,
+    /// Called from the render threads as samples are taken.
+    pub progress: &'a (dyn Fn(JobProgress) + Sync),
+    /// Set to stop: the path tracer ends its pass early, Whitted skips the tiles not yet
+    /// started; what is done is kept.
+    pub cancel: Option<&'a AtomicBool>,
+    /// For the path tracer: stop after the pass that spends this much time.
+    pub time: Option<Duration>,
+}
+
+/// What a render came to.
+#[derive(Clone, Debug)]
+pub struct Finished {
+    /// The picture.
+    pub image: Image,
+    /// The path tracer's film of sums (its variance view reads it); `None` for Whitted.
+    pub film: Option<Film>,
+    /// Whether the picture is whole (not cancelled; a render stopped by `time` is whole,
+    /// with fewer samples).
+    pub complete: bool,
+    /// Samples per pixel in the picture (the fewest any pixel has).
+    pub spp: u32,
+    /// The rays traced.
+    pub rays: RayStats,
+    /// Samples that came out NaN or infinite (left out of their pixels).
+    pub bad_samples: BadSamples,
+}
+
+/// Why a job could not be rendered to its files.
+#[derive(Debug, thiserror::Error)]
+pub enum RunError {
+    /// The render could not run.
+    #[error(transparent)]
+    Render(#[from] RenderError),
+    /// The path tracer's passes could not run.
+    #[error(transparent)]
+    Pass(#[from] PassError),
+    /// A file could not be reserved or written.
+    #[error(transparent)]
+    Output(#[from] OutputError),
+    /// A debug view this render cannot give.
+    #[error("{0}")]
+    View(String),
+}
+
+/// Renders `scene` as its settings say (see the module's doc).
+pub fn run(scene: &Scene, options: &RunOptions) -> Result<Finished, RunError> {
+    let s = &scene.settings;
+    let integrator = integrator::chosen(s.integrator.kind);
+    let pixels = s.width as u64 * s.height as u64;
+    let total = pixels * s.spp as u64;
+    if !integrator.uses_sampler() {
+        let progress = |n: u64| {
+            (options.progress)(JobProgress {
+                done: n * s.spp as u64,
+                total,
+            })
+        };
+        let render = RenderOptions {
+            threads: options.threads,
+            progress: &progress,
+            cancel: options.cancel,
+            region: None,
+        };
+        let r = render_with(scene, integrator, &render, None)?;
+        return Ok(Finished {
+            complete: r.complete(),
+            image: r.image,
+            film: None,
+            spp: s.spp,
+            rays: r.rays,
+            bad_samples: r.bad_samples,
+        });
+    }
+    // The pass under way: the samples taken before it, and its samples per pixel.
+    let (base, step) = (AtomicU64::new(0), AtomicU64::new(0));
+    let progress = |n: u64| {
+        let done = base.load(Ordering::Relaxed) + n * step.load(Ordering::Relaxed);
+        (options.progress)(JobProgress { done, total })
+    };
+    let render = RenderOptions {
+        threads: options.threads,
+        progress: &progress,
+        cancel: options.cancel,
+        region: None,
+    };
+    let mut film = Film::new(s.width, s.height);
+    let until = Until {
+        spp: s.spp,
+        time: options.time,
+    };
+    let done = render_progressive(
+        scene,
+        integrator,
+        &mut film,
+        until,
+        &render,
+        &mut |event, _| {
+            if let PassEvent::Start { from, to } = event {
+                base.store(pixels * from as u64, Ordering::Relaxed);
+                step.store((to - from) as u64, Ordering::Relaxed);
+            }
+        },
+    )?;
+    Ok(Finished {
+        image: film.image(),
+        complete: done.ended.unwrap_or(Ended::Cancelled) != Ended::Cancelled,
+        spp: film_samples(&film),
+        film: Some(film),
+        rays: done.rays,
+        bad_samples: done.bad_samples,
+    })
+}
+
+/// A render's files, reserved before it starts: the picture, and its debug views as layers
+/// of the one EXR or as a PNG each beside the picture ([`Outputs::view_path`]).
+#[derive(Debug)]
+pub struct Outputs {
+    picture: PendingOutput,
+    views: Vec<Aov>,
+    pngs: Vec<(Aov, PendingOutput)>,
+}
+
+impl Outputs {
+    /// Reserves `path` and, for a PNG, a file for each of `views`.
+    pub fn reserve(path: &Path, views: &[Aov]) -> Result<Outputs, OutputError> {
+        let mut outputs = Outputs {
+            picture: PendingOutput::create(path)?,
+            views: vec![],
+            pngs: vec![],
+        };
+        outputs.add_views(views)?;
+        Ok(outputs)
+    }
+
+    /// Adds debug views to the files: for a PNG, a file reserved for each.
+    pub fn add_views(&mut self, views: &[Aov]) -> Result<(), OutputError> {
+        for &a in views {
+            if self.picture.format() == OutputFormat::Png {
+                let path = Self::view_path(self.picture.path(), a);
+                self.pngs.push((a, PendingOutput::create(&path)?));
+            }
+            self.views.push(a);
+        }
+        Ok(())
+    }
+
+    /// Where a PNG's debug view goes: `out.png` with the view's name before the extension,
+    /// `out.normal.png`.
+    pub fn view_path(out: &Path, view: Aov) -> PathBuf {
+        let mut name = out.file_stem().unwrap_or_default().to_os_string();
+        name.push(format!(".{}.", view.name()));
+        name.push(out.extension().unwrap_or_default());
+        out.with_file_name(name)
+    }
+
+    /// The picture's file format.
+    pub fn format(&self) -> OutputFormat {
+        self.picture.format()
+    }
+
+    /// Sends every file to its partial name (`x.partial.png`), for an unfinished render.
+    pub fn make_partial(&mut self) {
+        self.picture.make_partial();
+        for (_, out) in &mut self.pngs {
+            out.make_partial();
+        }
+    }
+
+    /// Writes `region` of the picture `image` as a region file (an EXR that `snell merge`
+    /// puts in its place, carrying `fingerprint` where the region is finished).
+    pub fn commit_region(
+        self,
+        image: &Image,
+        region: super::Region,
+        tone: &crate::output::tone::Tone,
+        fingerprint: Option<u64>,
+    ) -> Result<(), OutputError> {
+        self.picture.commit_region(image, region, tone, fingerprint)
+    }
+
+    /// Writes the picture `image` and the debug views (rendered here, one ray through each
+    /// pixel's centre; the variance view read from `film`).
+    pub fn commit(
+        self,
+        scene: &Scene,
+        image: &Image,
+        film: Option<&Film>,
+        threads: Option<usize>,
+    ) -> Result<(), RunError> {
+        let tone = &scene.settings.tone;
+        if self.views.is_empty() {
+            return Ok(self.picture.commit_toned(image, tone)?);
+        }
+        let mut buffers = render_aovs(scene, threads)?;
+        if let Some(film) = film {
+            buffers.set_variance(film);
+        }
+        if self.picture.format() == OutputFormat::Exr {
+            let layers: Vec<ExrLayer> = self
+                .views
+                .iter()
+                .map(|&a| (a.name(), buffers.channels(a)))
+                .collect();
+            let bytes = encode_exr_layers(image, &layers, self.picture.path())?;
+            return Ok(self.picture.commit_bytes(&bytes)?);
+        }
+        self.picture.commit_toned(image, tone)?;
+        for (a, out) in self.pngs {
+            out.commit(&buffers.display(a, scene.settings.max_depth))?;
+        }
+        Ok(())
+    }
+}
+
+/// Renders `job` to `out` (PNG or EXR, by its extension) with the debug views `views`: the
+/// files reserved first, the render run ([`run`]), then the files written, to their partial
+/// names if the render was cancelled. The variance view is the path tracer's only.
+pub fn render_to_files(
+    job: &RenderJob,
+    out: &Path,
+    views: &[Aov],
+    options: &RunOptions,
+) -> Result<Finished, RunError> {
+    let scene = &job.scene;
+    let sampled = integrator::chosen(scene.settings.integrator.kind).uses_sampler();
+    if views.contains(&Aov::Variance) && !sampled {
+        return Err(RunError::View(
+            "the variance view is the path tracer's: Whitted's samples are fixed strata".into(),
+        ));
+    }
+    let mut outputs = Outputs::reserve(out, views)?;
+    let finished = run(scene, options)?;
+    if !finished.complete {
+        outputs.make_partial();
+    }
+    outputs.commit(
+        scene,
+        &finished.image,
+        finished.film.as_ref(),
+        options.threads,
+    )?;
+    Ok(finished)
+}
