@@ -85,7 +85,11 @@ INTRO = {
 }
 PAGE = {
  'index.html': 'The page\'s markup: the picture, the controls (exposure, tone curve, integrator), the status line and the explain panel.',
- 'app.js': 'The page\'s behaviour: the event stream of new pictures and status, the controls, camera moves, and a click on the picture sent to `/explain` and shown as a tree.',
+ 'app.js': 'The page\'s script, its entry module: it follows the event stream of the server\'s status and wires the controls to the modules below (ES modules, one per concern, no build step).',
+ 'state.js': 'What the page\'s modules share: the elements, the state more than one of them reads or writes (the server\'s latest status, a drag under way) as one object, small formatting helpers.',
+ 'picture.js': 'The picture and the status line: the newest frame (or debug view) shown, frames it could not keep up with skipped, the scene\'s exposure and curve followed in the controls, errors over the picture.',
+ 'explain.js': 'Pixels explained: the hover that names what is under the pointer, and a click\'s `/explain` answer shown as a tree, its hit points drawn over the picture.',
+ 'camera.js': 'Camera moves: a drag orbits, the wheel moves in and out, each sent to `/camera`; a press that does not move is a click to explain; the copy and reset buttons.',
  'style.css': 'The page\'s look.',
 }
 ORDER = ['src/','src/math/','src/sampler/','src/geometry/','src/geometry/mesh/','src/accel/','src/accel/wide/',

@@ -22,8 +22,25 @@ fn every_route_answers() {
             .unwrap()
             .contains("default-src 'self'")
     );
+    assert!(
+        page.text()
+            .contains("<script type=\"module\" src=\"/app.js\">")
+    );
+    // The script is ES modules, each served on its own route; every module one imports is
+    // among them.
+    let modules = [
+        "app.js",
+        "state.js",
+        "picture.js",
+        "explain.js",
+        "camera.js",
+    ];
     for (path, kind, needle) in [
         ("/app.js", "text/javascript", "EventSource"),
+        ("/state.js", "text/javascript", "export const state"),
+        ("/picture.js", "text/javascript", "/frame.jpg"),
+        ("/explain.js", "text/javascript", "/explain?"),
+        ("/camera.js", "text/javascript", "'/camera'"),
         ("/style.css", "text/css", "#frame-box"),
     ] {
         let r = get(p, path);
@@ -32,7 +49,12 @@ fn every_route_answers() {
             r.header("content-type").unwrap().starts_with(kind),
             "{path}"
         );
-        assert!(r.text().contains(needle), "{path}");
+        let text = r.text();
+        assert!(text.contains(needle), "{path}");
+        for import in text.split(" from './").skip(1) {
+            let name = import.split('\'').next().unwrap();
+            assert!(modules.contains(&name), "{path} imports {name}");
+        }
     }
     let st = wait_for(p, 30, "a finished picture", |s| {
         current_frame(s) && s["frame"]["done"] == true
@@ -218,6 +240,9 @@ fn hostile_paths_reach_no_file() {
         "/view/%2e%2e/seed.toml",
         "/app.js/../../Cargo.toml",
         "/./app.js/..",
+        "/state.js/../../Cargo.toml",
+        "/page/app.js",
+        "/main.js",
         "/frame.jpg/../../etc/passwd",
         "/index.html",
         "http://127.0.0.1/../etc/passwd",

@@ -25,8 +25,14 @@ use std::sync::{Arc, Mutex};
 use std::time::Duration;
 
 const PAGE: &str = include_str!("page/index.html");
+/// The page's script, ES modules by concern: `app.js` is the entry and imports the others.
 const SCRIPT: &str = include_str!("page/app.js");
+const STATE: &str = include_str!("page/state.js");
+const PICTURE: &str = include_str!("page/picture.js");
+const EXPLAIN: &str = include_str!("page/explain.js");
+const CAMERA: &str = include_str!("page/camera.js");
 const STYLE: &str = include_str!("page/style.css");
+const JS: &str = "text/javascript; charset=utf-8";
 
 /// Event streams open at once; more are refused, so that tabs left open cannot use up the
 /// server.
@@ -76,7 +82,11 @@ type Ctx = State<Arc<Context>>;
 pub(crate) fn router(ctx: Arc<Context>) -> Router {
     Router::new()
         .route("/", get(|| async { page("text/html; charset=utf-8", PAGE) }))
-        .route("/app.js", get(|| async { page("text/javascript; charset=utf-8", SCRIPT) }))
+        .route("/app.js", get(|| async { page(JS, SCRIPT) }))
+        .route("/state.js", get(|| async { page(JS, STATE) }))
+        .route("/picture.js", get(|| async { page(JS, PICTURE) }))
+        .route("/explain.js", get(|| async { page(JS, EXPLAIN) }))
+        .route("/camera.js", get(|| async { page(JS, CAMERA) }))
         .route("/style.css", get(|| async { page("text/css; charset=utf-8", STYLE) }))
         .route("/events", get(events))
         .route("/status", get(|State(ctx): Ctx| async move { json(&status(&ctx)) }))

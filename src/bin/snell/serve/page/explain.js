@@ -1,0 +1,163 @@
+// Pixels explained: the pixel under the pointer, the hover that names what is there (from
+// `/pick`), and a click's `/explain` answer shown as a tree of rays beside the picture, its
+// hit points drawn over the picture.
+
+import { $, img, overlay, SVG, state, fmt } from './state.js';
+
+let hoverTimer = 0;
+
+// The pixel of the picture under a mouse event, or null off the picture.
+export function pixelAt(e) {
+  const status = state.status;
+  if (!status || !status.size) return null;
+  const r = img.getBoundingClientRect();
+  const [w, h] = status.size;
+  const x = Math.floor((e.clientX - r.left) / r.width * w);
+  const y = Math.floor((e.clientY - r.top) / r.height * h);
+  return x >= 0 && y >= 0 && x < w && y < h ? [x, y] : null;
+}
+
+// The pointer moved over the picture: once it rests, say what is under it.
+export function hover(e) {
+  if (state.drag) return;
+  clearTimeout(hoverTimer);
+  const p = pixelAt(e);
+  const box = $('frame-box').getBoundingClientRect();
+  const hover = $('hover');
+  hover.style.left = `${e.clientX - box.left + 14}px`;
+  hover.style.top = `${e.clientY - box.top + 14}px`;
+  if (!p) { hover.hidden = true; return; }
+  hoverTimer = setTimeout(async () => {
+    const r = await fetch(`/pick?x=${p[0]}&y=${p[1]}`);
+    if (!r.ok) return;
+    const pick = await r.json();
+    hover.textContent = pick.object
+      ? `${pick.object} · ${pick.material} · (${p[0]}, ${p[1]})`
+      : `background · (${p[0]}, ${p[1]})`;
+    hover.hidden = false;
+  }, 80);
+}
+
+export function hoverGone() { clearTimeout(hoverTimer); $('hover').hidden = true; }
+
+// ---- Why this colour ---------------------------------------------------------------------
+function swatch(c) {
+  const s = document.createElement('span');
+  s.className = 'swatch';
+  const enc = (v) => Math.round(255 * Math.min(1, Math.max(0, v)) ** (1 / 2.2));
+  s.style.background = `rgb(${enc(c[0])}, ${enc(c[1])}, ${enc(c[2])})`;
+  return s;
+}
+
+function vec(v) { return `(${v.map((x) => fmt(x, 3)).join(', ')})`; }
+
+function value(v) {
+  if (Array.isArray(v) && v.every((x) => typeof x === 'number')) return vec(v);
+  if (typeof v === 'number') return String(Math.round(v * 1e5) / 1e5);
+  if (v === null) return '—';
+  return String(v);
+}
+
+function kv(parent, k, v) {
+  const d = document.createElement('div');
+  d.className = 'kv';
+  const key = document.createElement('span');
+  key.className = 'k';
+  key.textContent = `${k}: `;
+  d.append(key, value(v));
+  parent.append(d);
+}
+
+// A summary line for an object of the explain data.
+function title(o, name) {
+  if (o.kind && 'depth' in o) {
+    const where = o.hit ? `hits ${o.hit.object} (${o.hit.material})` : 'leaves the scene';
+    return `${o.kind} ray, depth ${o.depth}: ${where}`;
+  }
+  if ('object' in o && 'bsdf' in o) return `vertex ${o.depth}: ${o.object} (${o.material}), ${o.bsdf}`;
+  if ('blocked_by' in o || 'crossings' in o) return o.blocked_by ? `shadow: blocked by ${o.blocked_by}` : 'shadow';
+  if ('light' in o && 'contribution' in o && 'direction' in o) return `light ${o.light}${o.what ? ` (${o.what})` : ''}`;
+  return name;
+}
+
+function tree(parent, o, name, open) {
+  const d = document.createElement('details');
+  d.open = open;
+  const s = document.createElement('summary');
+  const what = document.createElement('span');
+  what.className = 'what';
+  what.textContent = title(o, name);
+  s.append(what);
+  const color = o.color || o.contribution;
+  if (Array.isArray(color)) { s.append(' '); s.append(swatch(color)); s.append(vec(color)); }
+  d.append(s);
+  for (const [k, v] of Object.entries(o)) {
+    // Drawn on the picture, said in the title, or nothing to say.
+    if (k === 'screen' || v === null || (Array.isArray(v) && v.length === 0)) continue;
+    if (Array.isArray(v) && v.length && typeof v[0] === 'object' && v[0] !== null) {
+      v.forEach((item, i) => tree(d, item, `${k} ${i}`, k === 'children' || k === 'vertices'));
+    } else if (v && typeof v === 'object' && !Array.isArray(v)) {
+      tree(d, v, k, k === 'hit' || k === 'tree' || k === 'path');
+    } else {
+      kv(d, k, v);
+    }
+  }
+  parent.append(d);
+}
+
+// The hit points of the explain data, each with the point of the ray it came from.
+function points(o, from, out) {
+  if (Array.isArray(o)) { o.forEach((v) => points(v, from, out)); return; }
+  if (!o || typeof o !== 'object') return;
+  let here = from;
+  if (Array.isArray(o.screen)) {
+    out.push([from, o.screen]);
+    here = o.screen;
+  }
+  for (const [k, v] of Object.entries(o)) {
+    if (k === 'screen') continue;
+    // A hit's children leave from the hit.
+    const next = k === 'children' && o.hit && Array.isArray(o.hit.screen) ? o.hit.screen : here;
+    points(v, next, out);
+  }
+}
+
+function draw(doc, pixel) {
+  overlay.replaceChildren();
+  const start = [pixel[0] + 0.5, pixel[1] + 0.5];
+  const mark = document.createElementNS(SVG, 'rect');
+  mark.setAttribute('class', 'pixel');
+  mark.setAttribute('x', pixel[0] - 2);
+  mark.setAttribute('y', pixel[1] - 2);
+  mark.setAttribute('width', 5);
+  mark.setAttribute('height', 5);
+  overlay.append(mark);
+  const segs = [];
+  points(doc.tree || doc.path, start, segs);
+  for (const [a, b] of segs) {
+    const line = document.createElementNS(SVG, 'line');
+    line.setAttribute('class', 'ray');
+    line.setAttribute('x1', a[0]); line.setAttribute('y1', a[1]);
+    line.setAttribute('x2', b[0]); line.setAttribute('y2', b[1]);
+    overlay.append(line);
+  }
+  for (const [, b] of segs) {
+    const dot = document.createElementNS(SVG, 'circle');
+    dot.setAttribute('class', 'hit');
+    dot.setAttribute('cx', b[0]); dot.setAttribute('cy', b[1]); dot.setAttribute('r', 3);
+    overlay.append(dot);
+  }
+}
+
+// Asks the server why pixel `p` has its colour, and shows the answer.
+export async function explain(p) {
+  const r = await fetch(`/explain?x=${p[0]}&y=${p[1]}`);
+  const box = $('tree');
+  if (!r.ok) { box.textContent = await r.text(); return; }
+  const doc = await r.json();
+  $('explain-hint').textContent = `Pixel (${p[0]}, ${p[1]}), ${doc.integrator === 'path' ? `the path of sample ${doc.sample}` : 'the ray through its centre'}: colour ${vec(doc.color)}.`;
+  box.replaceChildren();
+  tree(box, doc.tree || doc.path, doc.tree ? 'tree' : 'path', true);
+  box.dataset.pixel = `${p[0]},${p[1]}`;
+  draw(doc, p);
+}
