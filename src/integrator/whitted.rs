@@ -9,9 +9,7 @@ use super::explain::{
 };
 use super::{Integrator, RayStats};
 use crate::light::{Falloff, Light};
-use crate::math::{
-    Color, Ray, Vec2, Vec3A, fresnel_dielectric, offset_ray_origin, reflect, refract,
-};
+use crate::math::{Color, Ray, Vec3A, fresnel_dielectric, offset_ray_origin, reflect, refract};
 use crate::scene::{Hit, RayDifferentials, Scene, Skip};
 
 /// The Whitted integrator.
@@ -319,7 +317,7 @@ impl Whitted {
         let view = -d;
         // Whitted lights by the point, spot and directional lights, which come first.
         for (index, light) in scene.lights.iter().take_while(|l| l.is_delta()).enumerate() {
-            let Some(ls) = light.sample_li(above, Vec2::ZERO, Falloff::None) else {
+            let Some(ls) = light.sample_delta(above, Falloff::None) else {
                 if R::ACTIVE {
                     rec.light(light_record(
                         index,
@@ -486,7 +484,9 @@ impl Whitted {
     }
 
     /// [`Whitted::shadow`], leaving out `skip` (the surface the ray leaves, which it cannot
-    /// meet again), with what the shadow ray met when `R` records.
+    /// meet again), with what the shadow ray met when `R` records. Out of line: inlined into
+    /// the shading, it pushed the object walk it calls out of line instead (docs/perf-log.md).
+    #[inline(never)]
     fn shadow_recorded<R: Recorder>(
         &self,
         scene: &Scene,

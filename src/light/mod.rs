@@ -83,6 +83,21 @@ crate::closed_set! {
     }
 }
 
+impl Light {
+    /// [`Emit::sample_li`] of a point, spot or directional light; `None` for the others.
+    /// The Whitted integrator reads only these, in its hottest loop: matching only them
+    /// keeps the area lights' and the environment's sampling out of its code.
+    #[inline]
+    pub fn sample_delta(&self, from: Vec3A, default: Falloff) -> Option<LightSample> {
+        match self {
+            Light::Point(l) => l.sample_li(from, Vec2::ZERO, default),
+            Light::Spot(l) => l.sample_li(from, Vec2::ZERO, default),
+            Light::Directional(l) => l.sample_li(from, Vec2::ZERO, default),
+            Light::Area(_) | Light::Environment(_) => None,
+        }
+    }
+}
+
 /// Light arriving at a point from one source.
 #[derive(Clone, Copy, Debug)]
 pub struct LightSample {

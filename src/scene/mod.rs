@@ -251,8 +251,9 @@ impl Scene {
     }
 
     /// Closest hit in `(0, t_max)` among the transparent objects only (cut-outs count as
-    /// transparent, and their holes are gone through).
-    #[inline]
+    /// transparent, and their holes are gone through). Always inlined into the shadow ray's
+    /// query, as the blocker's walk is.
+    #[inline(always)]
     pub fn closest_transparent_hit(&self, ray: &Ray, t_max: f32) -> Option<Hit> {
         let (mut r, mut left, mut travelled) = (*ray, t_max, 0.0);
         for k in 0..cutout::MAX_HOLES {
