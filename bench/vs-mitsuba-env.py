@@ -25,6 +25,12 @@ How to run
     cargo build --release
     python3 bench/vs-mitsuba-env.py --repeats 3 --spp-list 8,12,16,20,24,32,48 --no-stop
     python3 bench/vs-mitsuba-env.py --env assets/env/studio.hdr --rotate -90
+    python3 bench/vs-mitsuba-env.py --sun-sky      # a generated sky with a 3-degree sun
+
+``--sun-sky`` lights the scene with a map this script makes (WORKDIR/sun-sky.exr, 2048 x 1024,
+32-bit float): a blue sky fading to a pale horizon over a dark ground, and a sun 3 degrees
+across, 40 degrees up, whose light on the floor is about four times the sky's: the small
+bright source that tests how each renderer samples an environment (issue 44's second scene).
 
 The studio map's bare bulb (radiance 3728 over a mean of 1.9) seen through the glass and the
 mirror makes caustics that neither renderer converges in 4096 samples: its references
@@ -132,6 +138,34 @@ def mitsuba_scene(mi, env, rotate):
     return mi.load_dict(d)
 
 
+def sun_sky(path, width=2048, height=1024, sun_elevation=40.0, sun_azimuth=30.0, sun_degrees=3.0):
+    """Writes the generated sky (see the module's doc) as a float RGB EXR at `path`: rows are
+    latitudes (the top row the zenith), columns longitudes, as every equirectangular map."""
+    import numpy as np
+    import mitsuba as mi
+    mi.set_variant('scalar_rgb')
+    v = (np.arange(height) + 0.5) / height
+    u = (np.arange(width) + 0.5) / width
+    lat = np.pi * (0.5 - v)[:, None] * np.ones((1, width))
+    lon = 2 * np.pi * (u - 0.5)[None, :] * np.ones((height, 1))
+    up = np.clip(np.sin(lat), 0, 1)[..., None]
+    zenith, horizon = np.array([0.12, 0.28, 0.75]), np.array([0.85, 0.9, 0.95])
+    sky = horizon + (zenith - horizon) * up ** 0.5
+    ground = np.array([0.12, 0.11, 0.10])
+    img = np.where((lat > 0)[..., None], sky, ground)
+    # The sun: a disk of `sun_degrees` across around its direction.
+    d = np.stack([np.cos(lat) * np.sin(lon), np.sin(lat), np.cos(lat) * np.cos(lon)], -1)
+    e, a = np.radians(sun_elevation), np.radians(sun_azimuth)
+    s = np.array([np.cos(e) * np.sin(a), np.sin(e), np.cos(e) * np.cos(a)])
+    half = np.radians(sun_degrees / 2)
+    solid = 2 * np.pi * (1 - np.cos(half))
+    # Irradiance on the floor about four times the sky's (the sky's is about pi x its mean).
+    radiance = 4 * np.pi * 0.55 / (solid * np.sin(e))
+    inside = (d @ s) > np.cos(half)
+    img[inside] = np.array([1.0, 0.95, 0.85]) * radiance
+    mi.Bitmap(img.astype(np.float32)).write(path)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter,
                                  epilog='Every other option is bench/vs-mitsuba.py\'s (--spp-list, --repeats, '
@@ -140,9 +174,15 @@ def main():
     ap.add_argument('--rotate', type=float, default=0, help="snell's rotate about y, degrees")
     ap.add_argument('--sampler', default='sobol', choices=['sobol', 'independent'], help="snell's sampler")
     ap.add_argument('--workdir', default=os.path.join(REPO, 'target', 'vs-mitsuba-env'))
+    ap.add_argument('--sun-sky', action='store_true', help='light the scene with a generated sky and a 3-degree sun instead of --env')
     args, rest = ap.parse_known_args()
     os.makedirs(args.workdir, exist_ok=True)
     env = os.path.abspath(os.path.join(REPO, args.env))
+    if args.sun_sky:
+        env = os.path.join(os.path.abspath(args.workdir), 'sun-sky.exr')
+        if not os.path.exists(env):
+            sun_sky(env)
+        args.env = os.path.relpath(env, REPO)
     toml = os.path.join(args.workdir, 'env.toml')
     with open(toml, 'w') as f:
         f.write(snell_toml(os.path.relpath(env, args.workdir), args.rotate, args.sampler))
