@@ -65,27 +65,46 @@ impl EnvironmentMap {
     /// The map of `image`, turned by `rotate_deg` (degrees about x, then y, then z), its
     /// values multiplied by `scale`.
     pub fn new(image: Arc<ImageData>, rotate_deg: Vec3A, scale: Color) -> Self {
+        use rayon::prelude::*;
         let (w, h) = (image.width() as usize, image.height() as usize);
-        let lum: Vec<f32> = (0..w * h)
-            .map(|i| luminance(image.texel((i % w) as u32, (i / w) as u32) * scale))
+        // Row by row on every core: each texel's value depends on its own row and the rows
+        // beside it only, so the tables are the same whatever the threads.
+        let mut lum = vec![0.0f32; w * h];
+        lum.par_chunks_mut(w.max(1))
+            .enumerate()
+            .for_each(|(y, row)| {
+                for (x, l) in row.iter_mut().enumerate() {
+                    *l = luminance(image.texel(x as u32, y as u32) * scale);
+                }
+            });
+        let sines: Vec<f32> = (0..h)
+            .map(|y| (PI * (y as f32 + 0.5) / h as f32).sin())
             .collect();
         let mut weights = vec![0.0f32; w * h];
-        let (mut sum, mut solid) = (Color::ZERO, 0.0f64);
-        for y in 0..h {
-            let sin = (PI * (y as f32 + 0.5) / h as f32).sin();
-            for x in 0..w {
-                // The mean luminance of the bilinear lookup over this texel's area: it blends
-                // the texel with its eight neighbours, by 6/8 and 1/8 along each axis.
-                const K: [f32; 3] = [0.125, 0.75, 0.125];
-                let mut m = 0.0f32;
-                for (ky, dy) in K.iter().zip([-1i64, 0, 1]) {
-                    let yy = (y as i64 + dy).clamp(0, h as i64 - 1) as usize;
-                    for (kx, dx) in K.iter().zip([-1i64, 0, 1]) {
-                        let xx = (x as i64 + dx).rem_euclid(w as i64) as usize;
-                        m += ky * kx * lum[yy * w + xx];
+        weights
+            .par_chunks_mut(w.max(1))
+            .enumerate()
+            .for_each(|(y, row)| {
+                for (x, weight) in row.iter_mut().enumerate() {
+                    // The mean luminance of the bilinear lookup over this texel's area: it
+                    // blends the texel with its eight neighbours, by 6/8 and 1/8 along each
+                    // axis.
+                    const K: [f32; 3] = [0.125, 0.75, 0.125];
+                    let mut m = 0.0f32;
+                    for (ky, dy) in K.iter().zip([-1i64, 0, 1]) {
+                        let yy = (y as i64 + dy).clamp(0, h as i64 - 1) as usize;
+                        for (kx, dx) in K.iter().zip([-1i64, 0, 1]) {
+                            let xx = (x as i64 + dx).rem_euclid(w as i64) as usize;
+                            m += ky * kx * lum[yy * w + xx];
+                        }
                     }
+                    *weight = m * sines[y];
                 }
-                weights[y * w + x] = m * sin;
+            });
+        // The mean in one order, texel after texel, as it always was summed.
+        let (mut sum, mut solid) = (Color::ZERO, 0.0f64);
+        for (y, &sin) in sines.iter().enumerate() {
+            for x in 0..w {
                 sum += image.texel(x as u32, y as u32) * (scale * sin);
                 solid += sin as f64;
             }
