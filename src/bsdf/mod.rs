@@ -20,7 +20,7 @@ pub use conductor::{Conductor, ConductorFresnel};
 pub use dielectric::Dielectric;
 pub use lambert::Lambert;
 pub use metallic::MetallicMix;
-pub use phong::{PhongBase, PhongMix};
+pub use phong::{COAT_IOR, PhongBase, PhongMix};
 pub use plastic::{Coat, Plastic, internal_diffuse_reflectance};
 pub use thin_dielectric::ThinDielectric;
 

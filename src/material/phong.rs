@@ -2,7 +2,7 @@
 //! reads as they are. The path tracer reads them as a mix that conserves energy
 //! ([`PhongMix`]): glass of index `ior` with weight `transparency`, a perfect mirror with
 //! weight `(1 - transparency) * reflectivity`, and for the rest the colour times `diffuse`
-//! (clamped to 1) as Lambertian reflection, under a clear coat of index 1.5 (`bsdf::phong::COAT_IOR`) whose roughness
+//! (clamped to 1) as Lambertian reflection, under a clear coat of index 1.5 (`bsdf::COAT_IOR`) whose roughness
 //! matches `shininess` where `specular` is not black. The coat passes light to the base as
 //! a smooth boundary would (`Coat::Smooth`), not by a rough coat's tables as `plastic` does:
 //! Phong's terms name no physical coat to match, and the tables would cost every scene of

@@ -32,7 +32,7 @@ impl Sobol {
         }
     }
 
-    /// Starts sample `index` (below [`MAX_SAMPLES`]; larger ones wrap) of pixel `(x, y)`.
+    /// Starts sample `index` (below `MAX_SAMPLES`, 65,536; larger ones wrap) of pixel `(x, y)`.
     pub fn start(&mut self, x: u32, y: u32, index: u32) {
         self.pixel_seed = hash_seed(&[self.seed, x as u64, y as u64]);
         self.index = index % MAX_SAMPLES;

@@ -24,7 +24,7 @@ impl Paint for Checker {
         }
     }
 
-    /// The product of two square waves under a tent filter ([`antialias::square_wave`]).
+    /// The product of two square waves under a tent filter (`antialias::square_wave`).
     fn filtered(&self, uv: Vec2, dx: Vec2, dy: Vec2, _wraps: Wraps) -> Color {
         let radius = footprint_radius(dx, dy);
         let r = radius / self.size;

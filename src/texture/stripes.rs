@@ -24,7 +24,7 @@ impl Paint for Stripes {
         }
     }
 
-    /// A square wave under a tent filter ([`antialias::square_wave`]).
+    /// A square wave under a tent filter (`antialias::square_wave`).
     fn filtered(&self, uv: Vec2, dx: Vec2, dy: Vec2, _wraps: Wraps) -> Color {
         let radius = footprint_radius(dx, dy);
         mix(

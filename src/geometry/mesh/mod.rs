@@ -33,7 +33,8 @@ pub struct MeshInput {
     pub uvs1: Vec<Vec2>,
     /// Corner indices of each triangle, counter-clockwise seen from the front.
     pub triangles: Vec<[u32; 3]>,
-    /// Per triangle, the index of its material slot (see [`Mesh::slots`]), or empty.
+    /// Per triangle, the index of its material slot (the mesh keeps it per lane, see
+    /// [`Mesh::slot`]), or empty.
     pub triangle_slots: Vec<u16>,
     /// Per-vertex tangents (unit `xyz`, the bitangent's sign in `w`: see `tangents`), or
     /// empty.

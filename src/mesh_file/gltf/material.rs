@@ -5,7 +5,7 @@
 /// A texture a material reads: its image, its uv set, and KHR_texture_transform's.
 #[derive(Clone, Debug, PartialEq)]
 pub struct TextureRef {
-    /// Index into [`GltfScene::images`].
+    /// Index into [`super::GltfScene::images`].
     pub image: usize,
     /// Which texture coordinates it reads (0 or 1).
     pub texcoord: u32,

@@ -13,7 +13,7 @@ pub fn load_mtl(path: &Path, warnings: &mut Vec<String>) -> Result<Vec<MtlMateri
 
 /// Parses MTL text held in memory; `path` names the file in messages and its folder is
 /// where `map_Kd` textures are looked for. Later `newmtl` blocks with a name already used
-/// are kept as separate entries here; [`parse`] lets the last one win.
+/// are kept as separate entries here; [`super::parse`] lets the last one win.
 pub fn parse_mtl(
     bytes: &[u8],
     path: &Path,
