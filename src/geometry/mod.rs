@@ -218,12 +218,25 @@ impl Shape {
     }
 
     /// [`Intersect::intersect`] of every shape but a mesh (`None` for a mesh): a jump to the
-    /// shape's test, with no frame of its own to set up.
+    /// shape's test, with no frame of its own to set up. The one method whose arms are
+    /// written out here rather than forwarded by `closed_set!`: the forward's own match
+    /// holds the mesh walk, too large to inline here, which cost every analytic shape test a
+    /// call more (docs/perf-log.md). The match names every variant, so a new shape cannot be
+    /// left out of it.
     #[inline(never)]
     fn intersect_analytic(&self, ray: &Ray, t_max: f32) -> Option<ShapeHit> {
         match self {
+            Shape::Sphere(s) => s.intersect(ray, t_max),
+            Shape::Plane(s) => s.intersect(ray, t_max),
+            Shape::Rect(s) => s.intersect(ray, t_max),
+            Shape::Cuboid(s) => s.intersect(ray, t_max),
+            Shape::Cylinder(s) => s.intersect(ray, t_max),
+            Shape::Cone(s) => s.intersect(ray, t_max),
+            Shape::Torus(s) => s.intersect(ray, t_max),
+            Shape::Disk(s) => s.intersect(ray, t_max),
+            Shape::Triangle(s) => s.intersect(ray, t_max),
+            Shape::Csg(s) => s.intersect(ray, t_max),
             Shape::Mesh(_) => None,
-            _ => self.intersect(ray, t_max),
         }
     }
 }

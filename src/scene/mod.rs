@@ -369,8 +369,9 @@ impl Scene {
     }
 
     /// Whether anything but `skip` blocks the ray in `(0, t_max)`, glass included (the path
-    /// tracer's shadow rays).
-    #[inline]
+    /// tracer's shadow rays). Always inlined into the path tracer's light sample, as it was
+    /// before the refactoring moved the inliner's choices (docs/perf-log.md).
+    #[inline(always)]
     pub fn occluded(&self, ray: &Ray, t_max: f32, skip: Skip) -> bool {
         if self.any_cutout {
             return self.occluded_past_holes(ray, t_max, skip);
