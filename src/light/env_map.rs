@@ -19,10 +19,15 @@ use std::sync::Arc;
 #[derive(Clone, Debug)]
 pub struct EnvironmentMap {
     pub(super) image: Arc<ImageData>,
+    /// The image's texels (times the scale it was made with) as half floats, row by row, which the radiance
+    /// lookups read: half the bytes of single floats, so more of a large map stays in the
+    /// cache between lookups (docs/perf-log.md).
+    texels: Box<[[half::f16; 3]]>,
+    /// What the half floats are multiplied by: a power of two that keeps the brightest texel
+    /// within half-float range (1 for most maps; a sun of radiance past 32,768 raises it).
+    unit: f32,
     /// World to the image's frame and back (a rotation).
     rotation: Transform,
-    /// Multiplies the image's values.
-    scale: Color,
     /// Over the image's texels: the mean luminance the bilinear lookup gives over each
     /// texel's area (positive wherever any light shows there, so light sampling reaches all
     /// of it), times the solid angle of its row.
@@ -109,10 +114,24 @@ impl EnvironmentMap {
                 solid += sin as f64;
             }
         }
+        let brightest = (0..w * h)
+            .into_par_iter()
+            .map(|i| (image.texel((i % w) as u32, (i / w) as u32) * scale).max_element())
+            .filter(|v| v.is_finite())
+            .reduce(|| 0.0f32, f32::max);
+        let unit = (brightest / 32768.0).max(1.0).log2().ceil().exp2();
+        let texels = (0..w * h)
+            .into_par_iter()
+            .map(|i| {
+                let c = image.texel((i % w) as u32, (i / w) as u32) * scale / unit;
+                c.to_array().map(half::f16::from_f32)
+            })
+            .collect();
         EnvironmentMap {
+            texels,
+            unit,
             image,
             rotation: Transform::rotation(rotate_deg.into()),
-            scale,
             density: Distribution2d::new(&weights, w, h),
             mean: if solid > 0.0 {
                 sum / solid as f32
@@ -131,13 +150,32 @@ impl EnvironmentMap {
 
     #[inline]
     fn radiance_at(&self, uv: Vec2) -> Color {
-        self.image.sample_bilinear(
-            uv,
-            crate::texture::Wraps {
-                u: crate::texture::Wrap::Repeat,
-                v: crate::texture::Wrap::Clamp,
-            },
-        ) * self.scale
+        use crate::texture::Wrap;
+        let (w, h) = (self.image.width() as i64, self.image.height() as i64);
+        let x = uv.x * w as f32 - 0.5;
+        let y = uv.y * h as f32 - 0.5;
+        if !(x.is_finite() && y.is_finite()) || w == 0 || h == 0 {
+            return Color::ZERO;
+        }
+        let (x0, y0) = (x.floor(), y.floor());
+        let (fx, fy) = (x - x0, y - y0);
+        let (x0, y0) = (x0 as i64, y0 as i64);
+        // Round the sphere in u, clamped at the poles in v.
+        let xs = [
+            Wrap::Repeat.index(x0, w),
+            Wrap::Repeat.index(x0.saturating_add(1), w),
+        ];
+        let ys = [
+            Wrap::Clamp.index(y0, h),
+            Wrap::Clamp.index(y0.saturating_add(1), h),
+        ];
+        let texel = |x: i64, y: i64| {
+            let t = self.texels[(y * w + x) as usize];
+            Color::new(t[0].to_f32(), t[1].to_f32(), t[2].to_f32())
+        };
+        let top = texel(xs[0], ys[0]).lerp(texel(xs[1], ys[0]), fx);
+        let bottom = texel(xs[0], ys[1]).lerp(texel(xs[1], ys[1]), fx);
+        top.lerp(bottom, fy) * self.unit
     }
 
     /// The density per unit solid angle of image coordinates `uv`: the texel density over

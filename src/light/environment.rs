@@ -156,6 +156,54 @@ mod tests {
         ))
     }
 
+    /// The radiance read from the half-float texels is the image's bilinear lookup to
+    /// within half-float rounding, for a map with a texel far past half-float range too (a
+    /// bright sun): nothing is clipped or infinite.
+    #[test]
+    fn half_float_radiance_is_the_images_lookup() {
+        let mut cases = 0;
+        for sun in [40.0f32, 2.5e6] {
+            let (w, h) = (32u32, 16u32);
+            let img = ::image::Rgb32FImage::from_fn(w, h, |x, y| {
+                let v = 0.1 + (x * 7 + y * 3) as f32 / 300.0;
+                let bright = if (x, y) == (22, 5) { sun } else { 0.0 };
+                ::image::Rgb([v + bright, 0.5 * v, 1e-3 * v + bright])
+            });
+            let data = Arc::new(ImageData::from_dynamic(
+                &::image::DynamicImage::ImageRgb32F(img),
+                crate::texture::ColorSpace::Linear,
+            ));
+            let scale = Color::new(1.0, 2.0, 0.5);
+            let map = EnvironmentMap::new(data.clone(), Vec3A::ZERO, scale);
+            let wraps = crate::texture::Wraps {
+                u: crate::texture::Wrap::Repeat,
+                v: crate::texture::Wrap::Clamp,
+            };
+            for (u, v) in [
+                (0.1, 0.2),
+                (0.7, 0.33),
+                (22.5 / 32.0, 5.5 / 16.0),
+                (0.999, 0.999),
+            ] {
+                let uv = Vec2::new(u, v);
+                let want = data.sample_bilinear(uv, wraps) * scale;
+                let got = map.radiance(direction_of(uv).0);
+                assert!(got.is_finite(), "{got}");
+                for k in 0..3 {
+                    // Values a billion times fainter than the sun are half-float
+                    // subnormals, with fewer digits: a millionth absolute there.
+                    let tol = 2e-3 * want[k].abs() + 1e-6;
+                    assert!(
+                        (got[k] - want[k]).abs() <= tol,
+                        "{sun} {uv}: {got} vs {want}"
+                    );
+                }
+                cases += 1;
+            }
+        }
+        assert_eq!(cases, 8);
+    }
+
     #[test]
     fn directions_and_image_coordinates_are_inverse() {
         for (u, v) in [(0.5, 0.5), (0.75, 0.3), (0.1, 0.9), (0.999, 0.01)] {
