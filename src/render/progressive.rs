@@ -11,7 +11,7 @@ use super::{BadSamples, RenderOptions};
 use crate::film::Film;
 use crate::integrator::{Integrator, RayStats};
 use crate::scene::Scene;
-use std::sync::atomic::Ordering;
+use std::sync::atomic::{AtomicU64, Ordering};
 use std::time::{Duration, Instant};
 
 /// When a progressive render stops.
@@ -67,6 +67,30 @@ pub struct Progressive {
     pub rays: RayStats,
     /// Samples that came out NaN or infinite (left out of their pixels).
     pub bad_samples: BadSamples,
+}
+
+/// Samples taken over all passes, for progress in samples: a pass reports the pixels it
+/// has finished ([`RenderOptions::progress`]); told when each pass starts, this turns that
+/// count into the samples of the whole render. Shared with the render threads.
+#[derive(Debug, Default)]
+pub struct SampleCount {
+    /// Samples taken before the pass under way.
+    base: AtomicU64,
+    /// Samples the pass under way adds to each pixel.
+    step: AtomicU64,
+}
+
+impl SampleCount {
+    /// A pass starts, taking each of `pixels` pixels from `from` to `to` samples.
+    pub fn pass(&self, pixels: u64, from: u32, to: u32) {
+        self.base.store(pixels * from as u64, Ordering::Relaxed);
+        self.step.store((to - from) as u64, Ordering::Relaxed);
+    }
+
+    /// The samples taken once `n` pixels of the pass under way are finished.
+    pub fn after(&self, n: u64) -> u64 {
+        self.base.load(Ordering::Relaxed) + n * self.step.load(Ordering::Relaxed)
+    }
 }
 
 /// The fewest samples any pixel of `film` has.
@@ -164,6 +188,19 @@ pub fn render_progressive(
 mod tests {
     use super::super::pass::tests::{bits, options};
     use super::*;
+
+    /// Pixels finished in a pass count as samples of the whole: the passes before it in
+    /// full, then this pass's samples for each finished pixel.
+    #[test]
+    fn a_sample_count_adds_the_passes_before() {
+        let count = SampleCount::default();
+        count.pass(10, 0, 1);
+        assert_eq!(count.after(4), 4);
+        count.pass(10, 1, 2);
+        assert_eq!(count.after(10), 20);
+        count.pass(10, 2, 4);
+        assert_eq!((count.after(0), count.after(10)), (20, 40));
+    }
     use crate::integrator::Path;
     use crate::render::render;
     use crate::scene::{Format, load_str};

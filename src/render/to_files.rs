@@ -6,7 +6,7 @@
 //! before the render starts (a bad path fails before any work) and written atomically; an
 //! unfinished picture goes beside the old one (`x.partial.png`), never over it.
 
-use super::progressive::{Ended, PassEvent, Until, film_samples, render_progressive};
+use super::progressive::{Ended, PassEvent, SampleCount, Until, film_samples, render_progressive};
 use super::{BadSamples, PassError, RenderError, RenderOptions, render_aovs, render_with};
 use crate::Scene;
 use crate::film::{Film, Image};
@@ -15,7 +15,7 @@ use crate::integrator::{self, RayStats};
 use crate::job::RenderJob;
 use crate::output::{ExrLayer, OutputError, OutputFormat, PendingOutput, encode_exr_layers};
 use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
+use std::sync::atomic::AtomicBool;
 use std::time::Duration;
 
 /// How far a render has come: `done` of `total` samples (pixels times samples per pixel).
@@ -105,10 +105,9 @@ pub fn run(scene: &Scene, options: &RunOptions) -> Result<Finished, RunError> {
             bad_samples: r.bad_samples,
         });
     }
-    // The pass under way: the samples taken before it, and its samples per pixel.
-    let (base, step) = (AtomicU64::new(0), AtomicU64::new(0));
+    let count = SampleCount::default();
     let progress = |n: u64| {
-        let done = base.load(Ordering::Relaxed) + n * step.load(Ordering::Relaxed);
+        let done = count.after(n);
         (options.progress)(JobProgress { done, total })
     };
     let render = RenderOptions {
@@ -130,8 +129,7 @@ pub fn run(scene: &Scene, options: &RunOptions) -> Result<Finished, RunError> {
         &render,
         &mut |event, _| {
             if let PassEvent::Start { from, to } = event {
-                base.store(pixels * from as u64, Ordering::Relaxed);
-                step.store((to - from) as u64, Ordering::Relaxed);
+                count.pass(pixels, from, to);
             }
         },
     )?;

@@ -5,8 +5,9 @@
 use super::{Outcome, Run, STOP};
 use snell::film::Film;
 use snell::render::RenderOptions;
-use snell::render::progressive::{Ended, PassEvent, Until, film_samples_in, render_progressive};
-use std::sync::atomic::{AtomicU64, Ordering};
+use snell::render::progressive::{
+    Ended, PassEvent, SampleCount, Until, film_samples_in, render_progressive,
+};
 use std::time::{Duration, Instant};
 
 /// Renders `run`'s scene in passes, from `earlier` (a resumed film) if given, until its
@@ -31,12 +32,8 @@ pub(crate) fn render_passes(
         run.bar.set_style(style);
     }
     let mut eta = String::from("ETA …");
-    // The pass under way: the bar's position at its start, and its samples per pixel.
-    let (base, step) = (AtomicU64::new(0), AtomicU64::new(0));
-    let progress = |n: u64| {
-        let (b, s) = (base.load(Ordering::Relaxed), step.load(Ordering::Relaxed));
-        run.bar.set_position(b + n * s);
-    };
+    let count = SampleCount::default();
+    let progress = |n: u64| run.bar.set_position(count.after(n));
     let options = RenderOptions {
         threads: run.threads,
         progress: &progress,
@@ -57,8 +54,7 @@ pub(crate) fn render_passes(
         &options,
         &mut |event, film| match event {
             PassEvent::Start { from, to } => {
-                base.store(pixels * from as u64, Ordering::Relaxed);
-                step.store((to - from) as u64, Ordering::Relaxed);
+                count.pass(pixels, from, to);
                 let error = error
                     .map(|e| format!(", error ≈ {:.2} %", 100.0 * e))
                     .unwrap_or_default();
