@@ -74,14 +74,23 @@ impl EnvironmentMap {
         let (w, h) = (image.width() as usize, image.height() as usize);
         // Row by row on every core: each texel's value depends on its own row and the rows
         // beside it only, so the tables are the same whatever the threads.
+        // The luminances, and with them the brightest channel that the half floats must hold.
         let mut lum = vec![0.0f32; w * h];
-        lum.par_chunks_mut(w.max(1))
+        let brightest = lum
+            .par_chunks_mut(w.max(1))
             .enumerate()
-            .for_each(|(y, row)| {
+            .map(|(y, row)| {
+                let mut most = 0.0f32;
                 for (x, l) in row.iter_mut().enumerate() {
-                    *l = luminance(image.texel(x as u32, y as u32) * scale);
+                    let c = image.texel(x as u32, y as u32) * scale;
+                    *l = luminance(c);
+                    if c.max_element().is_finite() {
+                        most = most.max(c.max_element());
+                    }
                 }
-            });
+                most
+            })
+            .reduce(|| 0.0f32, f32::max);
         let sines: Vec<f32> = (0..h)
             .map(|y| (PI * (y as f32 + 0.5) / h as f32).sin())
             .collect();
@@ -114,11 +123,6 @@ impl EnvironmentMap {
                 solid += sin as f64;
             }
         }
-        let brightest = (0..w * h)
-            .into_par_iter()
-            .map(|i| (image.texel((i % w) as u32, (i / w) as u32) * scale).max_element())
-            .filter(|v| v.is_finite())
-            .reduce(|| 0.0f32, f32::max);
         let unit = (brightest / 32768.0).max(1.0).log2().ceil().exp2();
         let texels = (0..w * h)
             .into_par_iter()
