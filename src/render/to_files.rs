@@ -185,11 +185,6 @@ impl Outputs {
         out.with_file_name(name)
     }
 
-    /// The picture's file format.
-    pub fn format(&self) -> OutputFormat {
-        self.picture.format()
-    }
-
     /// Sends every file to its partial name (`x.partial.png`), for an unfinished render.
     pub fn make_partial(&mut self) {
         self.picture.make_partial();
