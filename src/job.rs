@@ -1,5 +1,5 @@
-//! A render job: a scene file with the overrides a caller gives (the command line today; a
-//! preview server or a Python module later), checked against the limits and the machine's
+//! A render job: a scene file with the overrides a caller gives (the command line, the
+//! Python module), checked against the limits and the machine's
 //! memory before any work, with the fingerprint a checkpoint must match. What every caller
 //! of a render must do lives here once, not in each front end.
 
@@ -154,9 +154,26 @@ impl RenderJob {
         assets: &mut AssetCache,
     ) -> Result<RenderJob, JobError> {
         let start = Instant::now();
-        let mut scene =
+        let scene =
             crate::scene::load_frame(scene_path, limits, frame, assets).map_err(JobError::Scene)?;
         let load_time = start.elapsed();
+        Self::from_scene(
+            scene, scene_path, overrides, limits, resumed, frame, load_time,
+        )
+    }
+
+    /// As [`RenderJob::prepare_frame`], for `scene` already built (from `scene_path`, or
+    /// from text that names itself so) in `load_time`: the overrides applied and checked,
+    /// the fingerprint made from the text it was built from.
+    pub fn from_scene(
+        mut scene: Scene,
+        scene_path: &Path,
+        overrides: &Overrides,
+        limits: &Limits,
+        resumed: Option<&Checkpoint>,
+        frame: u32,
+        load_time: Duration,
+    ) -> Result<RenderJob, JobError> {
         let lighting = scene.lighting_warning();
         let s = &mut scene.settings;
         if let Some(c) = resumed {

@@ -24,7 +24,8 @@ pub use footprint::{RayDifferentials, SurfacePatch};
 pub use format::{IntegratorKind, schema, schema_of_types};
 pub use limits::{Limits, MemoryEstimate, available_memory, memory_estimate};
 pub use load::{
-    Animation, MAX_FRAMES, MAX_MAGNITUDE, load, load_frame, load_str, load_str_frame, load_with,
+    Animation, MAX_FRAMES, MAX_MAGNITUDE, load, load_frame, load_str, load_str_frame,
+    load_str_with, load_with,
 };
 pub use settings::{Fog, IntegratorSettings, RenderSettings};
 pub use stats::{BuildStats, MeshStats};

@@ -96,6 +96,21 @@ pub fn load_str_frame(
     build(text, file, base_dir, format, &limits, frame, &mut assets)
 }
 
+/// As [`load_str_frame`], checked against `limits` and reusing the images and meshes
+/// `assets` kept from earlier builds (a script that edits a scene and renders it again reads
+/// its textures once).
+pub fn load_str_with(
+    text: &str,
+    file: &Path,
+    base_dir: &Path,
+    format: Format,
+    limits: &Limits,
+    frame: u32,
+    assets: &mut AssetCache,
+) -> Result<Scene, SceneError> {
+    build(text, file, base_dir, format, limits, frame, assets)
+}
+
 /// Parses `text` and builds its scene at `frame`: the one path every entry point takes, so
 /// a file and a string report the same problems in the same words.
 fn build(
