@@ -30,7 +30,7 @@ def doc(path):
             if not l: break
             para.append(l)
         return first_sentence(' '.join(para))
-    if path.endswith('.py'):
+    if path.endswith(('.py','.pyi')):
         m=re.search(r'^(?:#[^\n]*\n)*\s*(?:"""|\'\'\')(.*?)(?:\n\s*\n|"""|\'\'\')', text, re.S)
         return first_sentence(m.group(1)) if m else ''
     if path.endswith('.sh') or path=='.ci/run':
@@ -77,11 +77,14 @@ INTRO = {
  'tests/integration/schema/': 'The JSON Schema against the parser and against `snell check`.',
  'tests/integration/serve/': '`snell serve` tested over real sockets and, in browser.rs, in a real browser.',
  'benches/': '`cargo bench` (criterion).',
- 'examples/': 'Programs that use the library for a benchmark.',
+ 'examples/': 'Programs that use the library for a benchmark; `snell-tour.ipynb`, the Python module\'s tour notebook (CI runs it: snell-py/tests/test_notebook.py).',
  'bench/': 'Benchmarks against the peers and between builds, each printing its figures; their results go to docs/perf-log.md.',
  'fuzz/fuzz_targets/': 'cargo-fuzz targets, one per kind of input a user hands snell (docs/fuzzing.md); `fuzz/seeds/` holds their starting corpora.',
  'python/snell_farm/': 'snell-farm, the Ray farm driver (`pip install ./python`), which calls the `snell` binary (docs/farm.md).',
  'python/tests/': 'snell-farm\'s tests (pytest), run by `.ci/run`.',
+ 'snell-py/src/': 'The Python module\'s native half, `snell._snell` (pyo3 and rust-numpy; a crate of the workspace, so that snell keeps `forbid(unsafe_code)`): what needs Rust, with the interpreter\'s lock released where it works.',
+ 'snell-py/python/snell/': 'The Python package `snell` (`pip install ./snell-py`, built by maturin): the shape a script sees, around `_snell`.',
+ 'snell-py/tests/': 'The Python module\'s tests (pytest), against the `snell` binary `cargo test` built; run by `.ci/run`.',
 }
 PAGE = {
  'index.html': 'The page\'s markup: the picture, the controls (exposure, tone curve, integrator), the status line and the explain panel.',
@@ -96,20 +99,20 @@ ORDER = ['src/','src/math/','src/sampler/','src/geometry/','src/geometry/mesh/',
  'src/bsdf/','src/material/','src/texture/','src/light/','src/light/sky/','src/mesh_file/','src/mesh_file/obj/','src/mesh_file/ply/','src/mesh_file/gltf/',
  'src/scene/','src/scene/format/','src/scene/load/','src/scene/gltf/','src/scene/detail/','src/integrator/',
  'src/film/','src/render/','src/output/','src/bin/snell/','src/bin/snell/render/','src/bin/snell/serve/','src/bin/snell/serve/page/',
- 'tests/integration/','tests/integration/cli/','tests/integration/schema/','tests/integration/serve/','benches/','examples/','bench/','fuzz/fuzz_targets/','python/snell_farm/','python/tests/']
+ 'tests/integration/','tests/integration/cli/','tests/integration/schema/','tests/integration/serve/','benches/','examples/','bench/','fuzz/fuzz_targets/','python/snell_farm/','python/tests/','snell-py/src/','snell-py/python/snell/','snell-py/tests/']
 groups=collections.OrderedDict((d,[]) for d in ORDER)
 for f in files:
     if f.startswith(('tests/bad/','tests/data/','tests/golden/','fuzz/seeds','docs/','assets/','scenes/','"')): continue
     if not os.path.exists(f): continue
     d=os.path.dirname(f)+'/'
     if d not in groups:
-        if f.endswith(('.rs','.py','.sh')) and d.startswith(('src/','tests/integration/','bench/','python/snell_farm/','python/tests/')) and not d.startswith('python/tests/data'):
+        if f.endswith(('.rs','.py','.sh')) and d.startswith(('src/','tests/integration/','bench/','python/snell_farm/','python/tests/','snell-py/')) and not d.startswith('python/tests/data'):
             raise SystemExit(f'{d}: a folder this script does not know; add it to ORDER and INTRO')
         continue
     b=os.path.basename(f)
     if d=='src/bin/snell/serve/page/':
         groups[d].append((b,PAGE[b])); continue
-    if not f.endswith(('.rs','.py','.sh')): continue
+    if not f.endswith(('.rs','.py','.pyi','.sh')): continue
     groups[d].append((b,doc(f)))
 out=[]
 for d,items in groups.items():

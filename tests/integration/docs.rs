@@ -251,6 +251,9 @@ const MAPPED: &[(&str, &[&str])] = &[
     ("fuzz/fuzz_targets", &["rs"]),
     ("python/snell_farm", &["py"]),
     ("python/tests", &["py"]),
+    ("snell-py/src", &["rs"]),
+    ("snell-py/python/snell", &["py", "pyi"]),
+    ("snell-py/tests", &["py"]),
     ("src/bin/snell/serve/page", &["html", "js", "css"]),
 ];
 
