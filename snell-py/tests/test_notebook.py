@@ -24,3 +24,39 @@ def test_the_tour_notebook_runs(repo):
     assert len(pngs) == 4, [sorted(o.get("data", {})) for o in outputs]
     text = "".join(o.get("text", "") for o in outputs)
     assert "rays drawn" in text and "fitted slope" in text
+
+
+def test_a_notebooks_interrupt_stops_a_render_with_what_is_done(repo):
+    """The kernel's interrupt (the notebook's stop button sends SIGINT to the kernel) ends
+    a long render at once with snell.Interrupted, and the kernel goes on."""
+    import time
+
+    from jupyter_client.manager import start_new_kernel
+
+    km, kc = start_new_kernel(kernel_name="python3", cwd=str(repo))
+    try:
+        code = (
+            "import snell\n"
+            "try:\n"
+            "    snell.render('scenes/cornell.toml', width=64, height=64, spp=65536)\n"
+            "except snell.Interrupted as e:\n"
+            "    print('interrupted', e.image.shape, e.image.complete, e.image.spp >= 1)\n"
+        )
+        msg_id = kc.execute(code)
+        time.sleep(2.0)  # the render is under way (it would take minutes)
+        km.interrupt_kernel()
+        out = []
+        while True:
+            msg = kc.get_iopub_msg(timeout=60)
+            if msg["parent_header"].get("msg_id") != msg_id:
+                continue
+            if msg["msg_type"] == "stream":
+                out.append(msg["content"]["text"])
+            if msg["msg_type"] == "status" and msg["content"]["execution_state"] == "idle":
+                break
+        assert "".join(out) == "interrupted (64, 64, 3) False True\n", out
+        reply = kc.execute_interactive("print(snell.render('scenes/seed.toml', width=8, height=8, spp=1).shape)", timeout=60)
+        assert reply["content"]["status"] == "ok"
+    finally:
+        kc.stop_channels()
+        km.shutdown_kernel(now=True)
