@@ -43,7 +43,7 @@ def doc(path):
     return ''
 
 INTRO = {
- 'src/': 'The library\'s root. `lib.rs` names the modules; the three files beside it are parts of a render that stand alone.',
+ 'src/': 'The library\'s root. `lib.rs` names the modules; each file beside it is one part that stands alone: the camera, checkpoints, the closed-set macro, explanations, jobs, the sampling lab.',
  'src/math/': 'The vocabulary every other part uses: rays, boxes, frames, transforms, offsets, random numbers, warps and their densities, and the statistics tests of sampling.',
  'src/sampler/': 'Where a sample\'s random numbers come from (the path tracer\'s `[integrator] sampler`).',
  'src/geometry/': 'Shapes in their own object space, one file each implementing `Intersect`, which the `Shape` enum forwards to (`closed_set!`); `Object` places one in the world.',

@@ -45,6 +45,7 @@ pub mod film;
 pub mod geometry;
 pub mod integrator;
 pub mod job;
+pub mod lab;
 pub mod light;
 pub mod material;
 pub mod math;

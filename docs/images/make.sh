@@ -50,6 +50,11 @@ render debugging/floor-stripes scenes/debugging/floor-stripes.toml --width 256 -
 render debugging/sunken-cylinder scenes/debugging/sunken-cylinder.toml --width 256 --height 256 --aov object
 render debugging/glass-disk scenes/debugging/glass-disk.toml --width 256 --height 256
 
+if [ ${#wanted[@]} -eq 0 ] || [[ " ${wanted[*]} " =~ " lab-plastic " ]]; then
+  echo "== lab-plastic"
+  "$snell" lab bsdf plastic --roughness 0.3 -o "$out/lab-plastic.png" > /dev/null
+fi
+
 if [ ${#wanted[@]} -eq 0 ] || [[ " ${wanted[*]} " =~ " orbit-strip " ]]; then
   echo "== orbit-strip"
   "$snell" render scenes/orbit.toml --frames 0..40 --width 200 --height 200 -o "$tmp/f_##.png" --quiet

@@ -2,23 +2,26 @@
 //! bsdfs_test.cpp and Mitsuba 3's chi2.py do: a million samples are binned, each bin's
 //! expected count is the density integrated over the bin, bins expecting fewer than five
 //! samples are pooled, and the test fails when the counts are unlikely under the density
-//! (p below 1 %). Test code only: every warp, BSDF and light sampler runs through it.
+//! (p below 1 %). Every warp, BSDF and light sampler's tests run through it, and `snell lab`
+//! shows its histograms (crate::lab).
 
 use super::{Rng, Vec2, Vec3A};
 use std::f64::consts::PI;
 
 /// Samples drawn per test.
-const SAMPLES: usize = 1 << 20;
+pub const SAMPLES: usize = 1 << 20;
 /// Subdivisions of each bin's sides when integrating the density over it.
 const SUB: usize = 12;
 /// Significance: a test fails when its p-value is below this.
-const ALPHA: f64 = 0.01;
+pub const ALPHA: f64 = 0.01;
 
 /// How a sphere of directions is binned: `theta` bands of equal angle from the pole (fine
 /// near it, where narrow lobes live) times `phi` sectors.
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct SphereBins {
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct SphereBins {
+    /// Bands from `theta = 0` (the pole, `+z`) to `pi`.
     pub theta: usize,
+    /// Sectors of `phi` from 0 (`+x`) round to `2 pi`.
     pub phi: usize,
 }
 
@@ -34,25 +37,22 @@ fn direction(theta: f64, phi: f64) -> Vec3A {
     Vec3A::new((s * phi.cos()) as f32, (s * phi.sin()) as f32, c as f32)
 }
 
-/// Tests directions drawn by `sample` (from a uniform point of the square; `None` for a
-/// sample that is absorbed) against `pdf`, a density per unit solid angle.
-pub(crate) fn chi2_sphere(
-    name: &str,
+/// Where directions drawn by `sample` (from uniform points of the square, `samples` of them;
+/// `None` for one absorbed) fall on `bins`: counts by band, then sector.
+pub fn sphere_histogram(
     bins: SphereBins,
+    samples: usize,
     mut sample: impl FnMut(Vec2) -> Option<Vec3A>,
-    pdf: impl Fn(Vec3A) -> f32,
-) -> Result<(), String> {
+) -> Result<Vec<f64>, String> {
     let (nt, np) = (bins.theta, bins.phi);
     let mut observed = vec![0.0f64; nt * np];
     let mut rng = Rng::new(0xc41_5a9e);
-    for _ in 0..SAMPLES {
+    for _ in 0..samples {
         let u = Vec2::new(rng.next_f32(), rng.next_f32());
         let Some(d) = sample(u) else { continue };
         let d = d.normalize_or_zero();
         if d == Vec3A::ZERO || !d.is_finite() {
-            return Err(format!(
-                "{name}: a sample direction is not finite or zero ({u})"
-            ));
+            return Err(format!("a sample direction is not finite or zero ({u})"));
         }
         let theta = (d.z as f64).clamp(-1.0, 1.0).acos();
         let mut t = ((theta / PI * nt as f64) as usize).min(nt - 1);
@@ -67,6 +67,13 @@ pub(crate) fn chi2_sphere(
         let p = ((phi / (2.0 * PI) * np as f64) as usize).min(np - 1);
         observed[t * np + p] += 1.0;
     }
+    Ok(observed)
+}
+
+/// The counts `samples` directions drawn with density `pdf` (per unit solid angle) are
+/// expected to leave in each of `bins`: the density integrated over each bin.
+pub fn sphere_expected(bins: SphereBins, samples: usize, pdf: impl Fn(Vec3A) -> f32) -> Vec<f64> {
+    let (nt, np) = (bins.theta, bins.phi);
     let (dt, dphi) = (PI / nt as f64, 2.0 * PI / np as f64);
     // Fine in theta: a density's edge across a band (a cone's rim) costs the midpoint rule
     // about half a sub-step of the band.
@@ -82,14 +89,28 @@ pub(crate) fn chi2_sphere(
                     sum += pdf(direction(theta, phi)) as f64 * theta.sin();
                 }
             }
-            expected[t * np + p] = sum * dt * dphi / (sub * SUB) as f64 * SAMPLES as f64;
+            expected[t * np + p] = sum * dt * dphi / (sub * SUB) as f64 * samples as f64;
         }
     }
-    verdict(name, &observed, &expected)
+    expected
+}
+
+/// Tests directions drawn by `sample` (from a uniform point of the square; `None` for a
+/// sample that is absorbed) against `pdf`, a density per unit solid angle.
+#[cfg(test)]
+pub(crate) fn chi2_sphere(
+    name: &str,
+    bins: SphereBins,
+    sample: impl FnMut(Vec2) -> Option<Vec3A>,
+    pdf: impl Fn(Vec3A) -> f32,
+) -> Result<(), String> {
+    let observed = sphere_histogram(bins, SAMPLES, sample).map_err(|e| format!("{name}: {e}"))?;
+    verdict(name, &observed, &sphere_expected(bins, SAMPLES, pdf))
 }
 
 /// Tests points of the unit square drawn by `sample` against `pdf`, a density over the
 /// square's area, on `res` x `res` bins.
+#[cfg(test)]
 pub(crate) fn chi2_square(
     name: &str,
     res: usize,
@@ -131,20 +152,46 @@ pub(crate) fn chi2_square(
     verdict(name, &observed, &expected)
 }
 
+/// What comparing counts with their expectation found.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Chi2 {
+    /// The statistic, over the bins expecting at least five samples and the pool of the
+    /// rest.
+    pub chi2: f64,
+    /// Its degrees of freedom.
+    pub dof: usize,
+    /// The chance of a statistic at least this large were the samples drawn with the
+    /// density: below [`ALPHA`] they are not.
+    pub p: f64,
+    /// The bin that strays most (index, observed, expected), among those expecting five.
+    pub worst: Option<(usize, f64, f64)>,
+    /// Samples where the density is 0 (more than a few fail the test whatever `p` says).
+    pub stray: f64,
+}
+
+impl Chi2 {
+    /// Whether the samples follow the density.
+    pub fn passed(&self) -> bool {
+        self.p >= ALPHA && self.stray <= 10.0
+    }
+}
+
 /// Pools the bins expecting under five samples and compares the counts.
-fn verdict(name: &str, observed: &[f64], expected: &[f64]) -> Result<(), String> {
+pub fn compare(observed: &[f64], expected: &[f64]) -> Chi2 {
     let (mut chi2, mut dof) = (0.0, 0usize);
     let (mut pooled_obs, mut pooled_exp) = (0.0, 0.0);
-    // The bin that strays most, for the message.
-    let mut worst = (0.0, 0, 0.0, 0.0);
+    let mut worst: Option<(usize, f64, f64)> = None;
+    let mut worst_term = 0.0;
+    let mut stray = 0.0f64;
     for (i, (&o, &e)) in observed.iter().zip(expected).enumerate() {
-        if e >= 5.0 && (o - e) * (o - e) / e > worst.0 {
-            worst = ((o - e) * (o - e) / e, i, o, e);
+        if e >= 5.0 && (o - e) * (o - e) / e > worst_term {
+            worst_term = (o - e) * (o - e) / e;
+            worst = Some((i, o, e));
         }
         // A few samples on a density's edge (a triangle's side) may land in a bin whose
         // integration points all missed it; more than a few mean samples where none belong.
-        if e <= 0.0 && o > 10.0 {
-            return Err(format!("{name}: {o} samples fell where the density is 0"));
+        if e <= 0.0 {
+            stray = stray.max(o);
         }
         if e < 5.0 {
             pooled_obs += o;
@@ -157,21 +204,38 @@ fn verdict(name: &str, observed: &[f64], expected: &[f64]) -> Result<(), String>
     if pooled_exp > 0.0 {
         chi2 += (pooled_obs - pooled_exp) * (pooled_obs - pooled_exp) / pooled_exp;
         dof += 1;
-    } else if pooled_obs > 10.0 {
-        return Err(format!(
-            "{name}: {pooled_obs} samples fell where nothing is expected"
-        ));
+    } else {
+        stray = stray.max(pooled_obs);
     }
     let dof = dof.saturating_sub(1).max(1);
     let p = 1.0 - gamma_p(dof as f64 / 2.0, chi2 / 2.0);
-    if p < ALPHA {
-        Err(format!(
-            "{name}: the samples do not follow the density: chi^2 = {chi2:.1} with {dof} degrees of freedom, p = {p:.3e}; bin {} has {} samples where {:.1} are expected",
-            worst.1, worst.2, worst.3
-        ))
-    } else {
-        Ok(())
+    Chi2 {
+        chi2,
+        dof,
+        p,
+        worst,
+        stray,
     }
+}
+
+/// [`compare`] as a test's verdict: a message naming `name` when the samples fail.
+#[cfg(test)]
+fn verdict(name: &str, observed: &[f64], expected: &[f64]) -> Result<(), String> {
+    let c = compare(observed, expected);
+    if c.stray > 10.0 {
+        return Err(format!(
+            "{name}: {} samples fell where the density is 0",
+            c.stray
+        ));
+    }
+    if c.passed() {
+        return Ok(());
+    }
+    let (bin, o, e) = c.worst.unwrap_or((0, 0.0, 0.0));
+    Err(format!(
+        "{name}: the samples do not follow the density: chi^2 = {:.1} with {} degrees of freedom, p = {:.3e}; bin {bin} has {o} samples where {e:.1} are expected",
+        c.chi2, c.dof, c.p
+    ))
 }
 
 /// `ln Gamma(x)` for `x > 0` (Lanczos, g = 7, nine terms: about 15 digits).

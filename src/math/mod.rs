@@ -4,8 +4,7 @@
 
 mod aabb;
 pub mod approx;
-#[cfg(test)]
-pub(crate) mod chi2;
+pub mod chi2;
 pub mod differential;
 pub mod distribution;
 pub mod distribution2d;

@@ -111,6 +111,11 @@ impl SceneDiagnostic {
     pub fn message(&self) -> &str {
         &self.message
     }
+
+    /// What to do about it, where the loader knows.
+    pub fn help(&self) -> Option<&str> {
+        self.help.as_deref()
+    }
 }
 
 /// A scene that could not be loaded: its file and every problem found.

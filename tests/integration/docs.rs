@@ -154,7 +154,8 @@ fn every_picture_is_made_by_the_script_with_the_samples_its_caption_gives() {
 /// The options a subcommand's `--help` lists (not the flags its prose mentions).
 fn options_of(command: &str) -> Vec<String> {
     let out = std::process::Command::new(env!("CARGO_BIN_EXE_snell"))
-        .args([command, "--help"])
+        .args(command.split_whitespace())
+        .arg("--help")
         .output()
         .unwrap();
     let help = String::from_utf8(out.stdout).unwrap();
@@ -223,7 +224,9 @@ fn synopsis_flags(text: &str, command: &str) -> Vec<String> {
 fn the_synopses_give_every_option_and_no_other() {
     let readme = std::fs::read_to_string(repo("README.md")).unwrap();
     let mut checked = 0;
-    for command in ["render", "check", "merge", "explain", "serve", "schema"] {
+    for command in [
+        "render", "check", "merge", "explain", "serve", "schema", "lab bsdf", "lab list",
+    ] {
         assert_eq!(
             synopsis_flags(&readme, command),
             options_of(command),
@@ -237,7 +240,7 @@ fn the_synopses_give_every_option_and_no_other() {
         options_of("serve"),
         "preview.md"
     );
-    assert_eq!(checked, 6);
+    assert_eq!(checked, 8);
 }
 
 /// The source folders docs/ARCHITECTURE.md maps file by file, with the file names each holds

@@ -35,6 +35,7 @@ pub(crate) fn count(n: u64, noun: &str) -> String {
 
 mod args;
 mod explain;
+mod lab;
 mod merge;
 mod render;
 mod serve;
@@ -110,6 +111,10 @@ enum Command {
     /// Refuses files of different renders (scene, size, samples, seed or integrator), files
     /// that overlap, and sets that leave pixels uncovered.
     Merge(merge::MergeArgs),
+    /// Experiments for learning how sampling works: `snell lab bsdf plastic --roughness 0.3`
+    /// tests a material's sampling against its density and draws both.
+    #[command(subcommand)]
+    Lab(lab::LabCommand),
     /// Print the scene format's JSON Schema, for editors: `snell schema > snell.schema.json`.
     ///
     /// With it, editors complete keys and flag mistakes in scene files as one types;
@@ -150,6 +155,7 @@ fn main() -> ExitCode {
         Command::Explain(args) => explain::explain(args),
         Command::Serve(args) => serve::serve(args),
         Command::Merge(args) => merge::merge_command(args),
+        Command::Lab(command) => lab::lab(command),
         Command::Schema => schema(),
     }
 }

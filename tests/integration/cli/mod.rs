@@ -3,6 +3,7 @@
 //! left broken.
 
 mod check;
+mod lab;
 mod render;
 
 use super::{repo, scratch};
