@@ -1,11 +1,14 @@
-//! The sampling lab (`snell lab`): a material's BSDF sampled from one direction, its samples'
-//! histogram over the sphere beside the histogram its density predicts, and the chi-square
-//! test between them, as Nori's warptest shows them to a class. The BSDF is the one a render
+//! The sampling lab (`snell lab`): a material's BSDF sampled from one direction (or a scene's
+//! lights from one point), its samples' histogram over the sphere beside the histogram its
+//! density predicts, and the chi-square test between them, as Nori's warptest shows them to
+//! a class. The BSDF is the one a render
 //! would use: the material is built by the scene loader from its keys, so every check and
 //! message is the scene file's.
 
+use crate::Scene;
 use crate::bsdf::Bsdf;
 use crate::film::Image;
+use crate::light::{Falloff, Light};
 use crate::math::chi2::{self, Chi2, SphereBins};
 use crate::math::{Color, Ray, Vec3A, hash_seed};
 use crate::scene::format::MaterialKind;
@@ -171,6 +174,99 @@ pub fn warp_test(
     })
 }
 
+/// A scene's light sampling seen from the point `from`: where next-event estimation's
+/// samples (a light chosen by power, a point of it) lie, against the density it reports
+/// for each direction, the sum over the lights of each one's chance times its density there,
+/// which MIS weighs the BSDF's samples by. Directions are binned with `theta` from straight
+/// up (`+y`); point, spot and directional lights are deltas, counted apart.
+pub fn light_test(
+    scene: &Scene,
+    from: Vec3A,
+    samples: usize,
+    bins: SphereBins,
+) -> Result<WarpTest, String> {
+    // Up (+y) as the bins' pole, by a rotation (x, y, z) -> (z, x, y).
+    let to_bins = |d: Vec3A| Vec3A::new(d.z, d.x, d.y);
+    let from_bins = |d: Vec3A| Vec3A::new(d.y, d.z, d.x);
+    let pdf = |dir: Vec3A| light_pdf(scene, from, dir);
+    let (mut specular, mut absorbed) = (0, 0);
+    // A sample on the very rim of a light (a ray grazing a sphere) may miss it when traced
+    // back: a few in ten thousand disagreeing are rounding, more are a fault.
+    let (mut disagree, mut first_disagreement) = (0usize, None);
+    let mut k = 0u64;
+    let observed = chi2::sphere_histogram(bins, samples, |u| {
+        k += 1;
+        let uc = (hash_seed(&[k, 0x11a6]) >> 40) as f32 / (1u64 << 24) as f32;
+        let Some(c) =
+            scene
+                .light_sampler
+                .sample(&scene.lights, from, uc, u, Falloff::InverseSquare)
+        else {
+            absorbed += 1;
+            return None;
+        };
+        if c.delta {
+            specular += 1;
+            return None;
+        }
+        let p = pdf(c.to_light);
+        if (c.pdf - p).abs() > 1e-3 * c.pdf.max(p) {
+            disagree += 1;
+            first_disagreement.get_or_insert_with(|| {
+                format!(
+                    "a sample toward {} has density {}, but the lights give {p} there",
+                    c.to_light, c.pdf
+                )
+            });
+        }
+        Some(to_bins(c.to_light))
+    })?;
+    let expected = chi2::sphere_expected(bins, samples, |d| pdf(from_bins(d)));
+    let inconsistent = (disagree * 10_000 > samples).then(|| {
+        format!(
+            "{disagree} samples disagree; {}",
+            first_disagreement.unwrap_or_default()
+        )
+    });
+    Ok(WarpTest {
+        bins,
+        samples,
+        specular,
+        absorbed,
+        chi2: chi2::compare(&observed, &expected),
+        observed,
+        expected,
+        inconsistent,
+    })
+}
+
+/// The density per unit solid angle with which next-event estimation from `from` picks
+/// direction `dir`: over the area lights the ray meets and the environment, each light's
+/// chance times its own density.
+fn light_pdf(scene: &Scene, from: Vec3A, dir: Vec3A) -> f32 {
+    let ray = Ray::new(from, dir);
+    let mut total = 0.0;
+    for (i, light) in scene.lights.iter().enumerate() {
+        let chance = scene.light_sampler.probability(i);
+        if chance <= 0.0 {
+            continue;
+        }
+        total += chance
+            * match light {
+                // A one-sided light is never sampled from behind.
+                Light::Area(a) => match a.emitter.intersect(&ray) {
+                    Some((point, normal)) if a.two_sided || normal.dot(from - point) > 0.0 => {
+                        a.pdf(from, point, normal)
+                    }
+                    _ => 0.0,
+                },
+                Light::Environment(e) => e.pdf(dir),
+                _ => 0.0,
+            };
+    }
+    total
+}
+
 /// The direction light leaves along at `degrees` from the normal, in the local frame.
 pub fn leaving_at(degrees: f32) -> Vec3A {
     let (s, c) = degrees.to_radians().sin_cos();
@@ -309,6 +405,41 @@ mod tests {
         assert!(e.0[0].contains("not a material key"), "{e}");
         let e = material_bsdf("diffuse", &params(&[("color", "1\n[x]")])).unwrap_err();
         assert!(e.0[0].contains("spans lines"), "{e}");
+    }
+
+    #[test]
+    fn the_lights_of_a_scene_are_sampled_as_their_density_says() {
+        let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+        let scene = crate::scene::load(&root.join("scenes/cornell.toml")).unwrap();
+        let t = light_test(&scene, Vec3A::ZERO, 1 << 18, SphereBins::default()).unwrap();
+        assert!(t.passed(), "{:?} {:?}", t.chi2, t.inconsistent);
+        assert!(t.observed.iter().sum::<f64>() > 200_000.0);
+        // From above the light, which glows downward only: nothing is sampled, nothing
+        // expected.
+        let t = light_test(
+            &scene,
+            Vec3A::new(0.0, 1.0, 0.0),
+            1 << 16,
+            SphereBins::default(),
+        )
+        .unwrap();
+        assert_eq!(t.absorbed, 1 << 16);
+        assert!(t.passed() && t.expected.iter().sum::<f64>() == 0.0);
+        // An environment map and a sphere light together.
+        let text = "[camera]\nlook_at = [0, 0, -1]\n[environment]\ntype = \"image\"\n\
+                    file = \"assets/env/studio.hdr\"\n\
+                    [materials.glow]\ntype = \"diffuse\"\nemission = 20\n[[objects]]\n\
+                    type = \"sphere\"\ncenter = [0, 3, 0]\nradius = 0.5\nmaterial = \"glow\"\n";
+        let scene = crate::scene::load_str(
+            text,
+            std::path::Path::new("t.toml"),
+            root,
+            crate::scene::Format::Toml,
+        )
+        .unwrap();
+        let t = light_test(&scene, Vec3A::ZERO, 1 << 18, SphereBins::default()).unwrap();
+        assert!(t.passed(), "{:?} {:?}", t.chi2, t.inconsistent);
+        assert_eq!(t.specular, 0);
     }
 
     #[test]

@@ -5,7 +5,7 @@
 
 use super::{Emit, Falloff, LightSample};
 use crate::geometry::{Disk, Rect, Sphere, SurfaceSample, Triangle, area_to_solid_angle};
-use crate::math::{Color, Vec2, Vec3A};
+use crate::math::{Color, Ray, Vec2, Vec3A};
 
 /// An emitting shape in world space.
 #[derive(Clone, Debug, PartialEq)]
@@ -21,6 +21,23 @@ pub enum Emitter {
 }
 
 impl Emitter {
+    /// Where `ray` first meets the shape (its point and outward normal), if it does: what a
+    /// light's density for a direction is found from.
+    pub fn intersect(&self, ray: &Ray) -> Option<(Vec3A, Vec3A)> {
+        use crate::geometry::Intersect;
+        let at = |s: &dyn Intersect| {
+            let hit = s.intersect(ray, f32::INFINITY)?;
+            let surface = s.surface(ray.at(hit.t), &hit, false);
+            Some((surface.point, surface.normal))
+        };
+        match self {
+            Emitter::Rect(s) => at(s),
+            Emitter::Disk(s) => at(s),
+            Emitter::Triangle(s) => at(s),
+            Emitter::Sphere(s) => at(s),
+        }
+    }
+
     /// The shape's area.
     pub fn area(&self) -> f32 {
         match self {

@@ -225,7 +225,15 @@ fn the_synopses_give_every_option_and_no_other() {
     let readme = std::fs::read_to_string(repo("README.md")).unwrap();
     let mut checked = 0;
     for command in [
-        "render", "check", "merge", "explain", "serve", "schema", "lab bsdf", "lab list",
+        "render",
+        "check",
+        "merge",
+        "explain",
+        "serve",
+        "schema",
+        "lab bsdf",
+        "lab light",
+        "lab list",
     ] {
         assert_eq!(
             synopsis_flags(&readme, command),
@@ -240,7 +248,7 @@ fn the_synopses_give_every_option_and_no_other() {
         options_of("serve"),
         "preview.md"
     );
-    assert_eq!(checked, 8);
+    assert_eq!(checked, 9);
 }
 
 /// The source folders docs/ARCHITECTURE.md maps file by file, with the file names each holds

@@ -1,8 +1,8 @@
-//! `snell lab`: a material's sampling against its density, printed as a chi-square test and
-//! drawn as histograms (snell::lab).
+//! `snell lab`: a material's sampling (or a scene's lights') against its density, printed as
+//! a chi-square test and drawn as histograms (snell::lab).
 
 use clap::{Args, Subcommand};
-use snell::lab::{leaving_at, material_bsdf, warp_test};
+use snell::lab::{WarpTest, leaving_at, light_test, material_bsdf, warp_test};
 use snell::math::chi2::SphereBins;
 use snell::scene::format::MaterialKind;
 use std::path::PathBuf;
@@ -16,7 +16,14 @@ pub(crate) enum LabCommand {
     ///
     /// Exits 0 when the samples follow the density, 1 when they do not, 2 on bad input.
     Bsdf(BsdfArgs),
-    /// List the material types the lab samples, with the keys each takes.
+    /// Sample a scene's lights from a point as next-event estimation does (a light chosen
+    /// by power, a point of it) and test the directions against the density the path
+    /// tracer reports for them; draw both histograms and their difference.
+    ///
+    /// Point, spot and directional lights are deltas, counted apart. Exits 0 when the
+    /// samples follow the density, 1 when they do not, 2 on bad input.
+    Light(LightArgs),
+    /// List what the lab samples: the material types, and the lights it tests in a scene.
     List,
 }
 
@@ -55,6 +62,36 @@ pub(crate) struct BsdfArgs {
     output: Option<PathBuf>,
 }
 
+/// `snell lab light`.
+#[derive(Args, Debug)]
+pub(crate) struct LightArgs {
+    /// The scene file (.toml or .json) whose lights are sampled.
+    scene: PathBuf,
+    /// The point the lights are seen from, world space.
+    #[arg(long, value_name = "X,Y,Z", value_parser = point, allow_negative_numbers = true)]
+    from: [f32; 3],
+    /// Samples drawn.
+    #[arg(long, value_name = "N", default_value_t = 1 << 20)]
+    samples: usize,
+    /// Where to draw the histograms (PNG or EXR), theta down from straight up (+y).
+    #[arg(short, long, value_name = "OUT")]
+    output: Option<PathBuf>,
+}
+
+fn point(s: &str) -> Result<[f32; 3], String> {
+    let v: Vec<f32> = s
+        .split(',')
+        .map(|x| x.trim().parse::<f32>())
+        .collect::<Result<_, _>>()
+        .map_err(|_| format!("`{s}` is not a point: give X,Y,Z"))?;
+    match v[..] {
+        [x, y, z] if v.iter().all(|c| c.is_finite()) => Ok([x, y, z]),
+        _ => Err(format!(
+            "`{s}` is not a point: give three finite numbers X,Y,Z"
+        )),
+    }
+}
+
 fn key_value(s: &str) -> Result<(String, String), String> {
     match s.split_once('=') {
         Some((k, v)) if !k.trim().is_empty() => Ok((k.trim().to_string(), v.trim().to_string())),
@@ -70,9 +107,13 @@ pub(crate) fn lab(command: LabCommand) -> ExitCode {
             for k in MaterialKind::ALL {
                 println!("  {}", k.name());
             }
+            println!(
+                "lights (snell lab light SCENE --from X,Y,Z): rectangle, disk, triangle and sphere area lights, environment images, the sky; point, spot and directional lights are deltas"
+            );
             ExitCode::SUCCESS
         }
         LabCommand::Bsdf(args) => bsdf(args),
+        LabCommand::Light(args) => light(args),
     }
 }
 
@@ -114,23 +155,91 @@ fn bsdf(args: BsdfArgs) -> ExitCode {
         Some(Ok(o)) => Some(o),
         None => None,
     };
-    let bins = SphereBins { theta: 40, phi: 80 };
-    let t = match warp_test(&lab.bsdf, leaving_at(args.angle), args.samples, bins) {
-        Ok(t) => t,
-        Err(e) => {
-            println!("{}: {e}", lab.title);
-            return ExitCode::from(1);
-        }
-    };
-    println!(
+    let t = warp_test(&lab.bsdf, leaving_at(args.angle), args.samples, BINS);
+    let title = format!(
         "{}, light leaving at {}° from the normal",
         lab.title, args.angle
     );
+    report(
+        &title,
+        t,
+        out,
+        "deltas: mirror or smooth-glass lobes",
+        "theta down from the normal",
+    )
+}
+
+/// The bins of every experiment: 40 bands of 4.5 degrees by 80 sectors.
+const BINS: SphereBins = SphereBins { theta: 40, phi: 80 };
+
+fn light(args: LightArgs) -> ExitCode {
+    let fail = |message: String| {
+        eprintln!("error: {message}");
+        ExitCode::from(2)
+    };
+    if !(1_000..=1 << 26).contains(&args.samples) {
+        return fail(format!(
+            "--samples {} is not between 1000 and {}",
+            args.samples,
+            1u64 << 26
+        ));
+    }
+    let scene = match snell::scene::load(&args.scene) {
+        Ok(s) => s,
+        Err(e) => {
+            crate::print_scene_error(&e);
+            return ExitCode::from(2);
+        }
+    };
+    let out = match args
+        .output
+        .as_deref()
+        .map(snell::output::PendingOutput::create)
+    {
+        Some(Err(e)) => return fail(e.to_string()),
+        Some(Ok(o)) => Some(o),
+        None => None,
+    };
+    let [x, y, z] = args.from;
+    let t = light_test(&scene, snell::math::Vec3A::new(x, y, z), args.samples, BINS);
+    let title = format!(
+        "the {} light(s) of {} seen from ({x}, {y}, {z})",
+        scene.lights.len(),
+        args.scene.display()
+    );
+    report(
+        &title,
+        t,
+        out,
+        "deltas: point, spot and directional lights",
+        "theta down from straight up (+y)",
+    )
+}
+
+/// Prints what an experiment found, draws it to `out`, and gives the exit code.
+fn report(
+    title: &str,
+    t: Result<WarpTest, String>,
+    out: Option<snell::output::PendingOutput>,
+    deltas: &str,
+    axes: &str,
+) -> ExitCode {
+    let t = match t {
+        Ok(t) => t,
+        Err(e) => {
+            println!("{title}: {e}");
+            return ExitCode::from(1);
+        }
+    };
+    println!("{title}");
     let binned = t.samples - t.specular - t.absorbed;
     println!(
-        "{} samples: {binned} in the histogram, {} on mirror or smooth-glass lobes (deltas, not drawn), {} absorbed",
+        "{} samples: {binned} in the histogram, {} on {deltas} (not drawn), {} absorbed",
         t.samples, t.specular, t.absorbed
     );
+    if binned == 0 {
+        println!("no sample has a density to test (all deltas or absorbed)");
+    }
     let c = &t.chi2;
     let verdict = if c.passed() {
         "the samples follow the density"
@@ -145,25 +254,26 @@ fn bsdf(args: BsdfArgs) -> ExitCode {
         println!("{} samples fell where the density is 0", c.stray);
     }
     if let (false, Some((bin, o, e))) = (c.passed(), c.worst) {
-        let (band, sector) = (bin / bins.phi, bin % bins.phi);
+        let (band, sector) = (bin / BINS.phi, bin % BINS.phi);
         println!(
             "the bin that strays most: theta {:.1}° to {:.1}°, phi {:.1}° to {:.1}°: {o} samples where {e:.1} are expected",
-            band as f32 * 180.0 / bins.theta as f32,
-            (band + 1) as f32 * 180.0 / bins.theta as f32,
-            sector as f32 * 360.0 / bins.phi as f32,
-            (sector + 1) as f32 * 360.0 / bins.phi as f32,
+            band as f32 * 180.0 / BINS.theta as f32,
+            (band + 1) as f32 * 180.0 / BINS.theta as f32,
+            sector as f32 * 360.0 / BINS.phi as f32,
+            (sector + 1) as f32 * 360.0 / BINS.phi as f32,
         );
     }
     if let Some(e) = &t.inconsistent {
-        println!("and the sampling disagrees with the BSDF: {e}");
+        println!("and the sampling disagrees with the density it reports: {e}");
     }
     if let Some(out) = out {
         let path = out.path().to_path_buf();
         if let Err(e) = out.commit(&t.image(6)) {
-            return fail(e.to_string());
+            eprintln!("error: {e}");
+            return ExitCode::from(2);
         }
         println!(
-            "wrote {}: the samples' histogram | the density's | their difference (red more, blue fewer, in standard deviations); theta down from the normal, phi across",
+            "wrote {}: the samples' histogram | the density's | their difference (red more, blue fewer, in standard deviations); {axes}, phi across",
             path.display()
         );
     }

@@ -171,7 +171,7 @@ fn schema() -> ExitCode {
     }
 }
 
-fn print_scene_error(e: &SceneError) {
+pub(crate) fn print_scene_error(e: &SceneError) {
     eprint!("{}", scene_error_text(e, std::io::stderr().is_terminal()));
 }
 

@@ -70,5 +70,68 @@ fn lab_refuses_what_it_cannot_build_with_exit_2() {
     }
     assert_eq!(checked, 6);
     let list = stdout(&expect(&["lab", "list"], &dir, 0));
-    assert_eq!(list.lines().count(), 8, "{list}");
+    assert_eq!(list.lines().count(), 9, "{list}");
+}
+
+#[test]
+fn lab_tests_a_scenes_lights_from_a_point() {
+    let dir = scratch("lab-light");
+    let cornell = repo("scenes/cornell.toml").to_string_lossy().into_owned();
+    let out = stdout(&expect(
+        &[
+            "lab",
+            "light",
+            &cornell,
+            "--from",
+            "0,0,0",
+            "--samples",
+            "200000",
+            "-o",
+            "l.png",
+        ],
+        &dir,
+        0,
+    ));
+    assert!(
+        out.contains("200000 samples: 200000 in the histogram"),
+        "{out}"
+    );
+    assert!(out.contains(": the samples follow the density\n"), "{out}");
+    assert!(dir.join("l.png").is_file());
+    // The seed's one light is a point: nothing to bin, said so.
+    let seed = repo("scenes/seed.toml").to_string_lossy().into_owned();
+    let out = stdout(&expect(
+        &[
+            "lab",
+            "light",
+            &seed,
+            "--from",
+            "0,0,-30",
+            "--samples",
+            "1000",
+        ],
+        &dir,
+        0,
+    ));
+    assert!(out.contains("no sample has a density to test"), "{out}");
+    let mut checked = 0;
+    for (args, said) in [
+        (
+            vec!["lab", "light", &seed, "--from", "0,0"],
+            "is not a point",
+        ),
+        (
+            vec!["lab", "light", "none.toml", "--from", "0,0,0"],
+            "none.toml",
+        ),
+        (
+            vec!["lab", "light", &seed, "--from", "0,0,0", "--samples", "5"],
+            "--samples 5",
+        ),
+    ] {
+        let err = stderr(&expect(&args, &dir, 2));
+        assert!(err.contains(said), "{args:?}: {err}");
+        checked += 1;
+    }
+    assert_eq!(checked, 3);
 }
