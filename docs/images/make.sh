@@ -50,10 +50,18 @@ render debugging/floor-stripes scenes/debugging/floor-stripes.toml --width 256 -
 render debugging/sunken-cylinder scenes/debugging/sunken-cylinder.toml --width 256 --height 256 --aov object
 render debugging/glass-disk scenes/debugging/glass-disk.toml --width 256 --height 256
 
-if [ ${#wanted[@]} -eq 0 ] || [[ " ${wanted[*]} " =~ " lab-plastic " ]]; then
-  echo "== lab-plastic"
-  "$snell" lab bsdf plastic --roughness 0.3 -o "$out/lab-plastic.png" > /dev/null
-fi
+# lab NAME ARGS...: docs/images/NAME.png from `snell lab ARGS -o ...`.
+lab() {
+  local name=$1
+  shift
+  if [ ${#wanted[@]} -gt 0 ] && [[ ! " ${wanted[*]} " =~ " ${name} " ]]; then return; fi
+  echo "== $name"
+  "$snell" lab "$@" -o "$out/$name.png" > /dev/null
+}
+lab lab-plastic bsdf plastic --roughness 0.3
+lab lab-gold-grazing bsdf conductor --param 'metal="Au"' --roughness 0.1 --angle 80
+lab lab-cornell-light light scenes/cornell.toml --from 0,-0.5,0
+lab lab-environment light scenes/environment.toml --from 0,0.5,0
 
 if [ ${#wanted[@]} -eq 0 ] || [[ " ${wanted[*]} " =~ " orbit-strip " ]]; then
   echo "== orbit-strip"

@@ -112,14 +112,32 @@ fn every_picture_is_made_by_the_script_with_the_samples_its_caption_gives() {
         (22, 7),
         "pictures made, captions with samples"
     );
-    // Every picture the pages show is one of the script's (or one it names).
+    // The lab's pictures (`lab NAME ARGS...`): three panels of 80 x 40 bins, 6 pixels a bin,
+    // with gaps of 6.
     let script = std::fs::read_to_string(repo("docs/images/make.sh")).unwrap();
+    let labs: Vec<&str> = script
+        .lines()
+        .filter_map(|l| l.strip_prefix("lab lab-"))
+        .filter_map(|l| l.split_whitespace().next())
+        .collect();
+    for name in &labs {
+        let picture = image::open(repo(&format!("docs/images/lab-{name}.png")))
+            .unwrap_or_else(|e| panic!("docs/images/lab-{name}.png: {e}"));
+        assert_eq!(
+            (picture.width(), picture.height()),
+            (1452, 240),
+            "lab-{name}"
+        );
+    }
+    assert_eq!(labs.len(), 4, "lab pictures made");
+    // Every picture the pages show is one of the script's (or one it names).
     let mut shown = 0;
     for page in [
         "README.md",
         "docs/debugging.md",
         "docs/scene-format.md",
         "docs/preview.md",
+        "docs/lab.md",
     ] {
         let text = std::fs::read_to_string(repo(page)).unwrap();
         for (i, _) in text.match_indices("images/") {
@@ -141,8 +159,10 @@ fn every_picture_is_made_by_the_script_with_the_samples_its_caption_gives() {
                         })
                 })
             });
+            let lab = name.strip_prefix("lab-").is_some_and(|n| labs.contains(&n));
             assert!(
-                view || lines.iter().any(|m| m.name == name)
+                view || lab
+                    || lines.iter().any(|m| m.name == name)
                     || script.contains(&format!("{name}.png")),
                 "{page} shows docs/images/{name}.png, which docs/images/make.sh does not make"
             );
