@@ -132,3 +132,20 @@ def test_explain_is_the_command_lines_document(repo, run_cli):
         snell.explain(scene, 5000, 0)
     path = snell.explain(snell.load(repo / "scenes/cornell.toml"), 256, 256, sample=2)
     assert path["integrator"] == "path" and path["sample"] == 2
+
+
+def test_numpy_values_are_taken_as_numbers_and_other_objects_refused():
+    scene = snell.loads(SMALL)
+    before = snell.render(scene)
+    scene.camera["position"] = np.array([0.0, 0.0, 6.0])
+    scene.materials["red"]["color"] = np.float32(0.5)
+    after = snell.render(scene)
+    assert not np.array_equal(before, after)
+    scene.camera["position"] = object()
+    with pytest.raises(TypeError, match="a scene holds numbers"):
+        snell.render(scene)
+    # Bad sizes are the interpreter's errors, never a crash.
+    with pytest.raises(OverflowError):
+        snell.render(snell.loads(SMALL), width=10**12)
+    with pytest.raises(snell.SettingsError):
+        snell.render(snell.loads(SMALL), width=0)

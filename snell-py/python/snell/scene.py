@@ -49,7 +49,7 @@ class Scene:
                 self._definition = _toml.loads(self._text)
             else:
                 self._definition = json.loads(self._text)
-            self._built = _dump(self._definition)
+            self._built = _dump(self._definition, sort_keys=True)
         return self._definition
 
     def _table(self, key: str, empty) -> Any:
@@ -107,9 +107,9 @@ class Scene:
         """The scene built from its definition as it is now: built again (raising
         `SceneError` for any problem) if the definition changed since the last build."""
         if self._definition is not None:
-            now = _dump(self._definition)
+            now = _dump(self._definition, sort_keys=True)
             if now != self._built:
-                text = json.dumps(self._definition, indent=2)
+                text = _dump(self._definition, indent=2)
                 # Messages name the edited text (`scene.source`), whose lines they count.
                 name = f"{self._name} (edited)"
                 self._native = _snell.loads(text, "json", name, self._base_dir, self._assets)
@@ -159,8 +159,16 @@ class Scene:
                 f"{s['integrator']}>")
 
 
-def _dump(definition: Dict[str, Any]) -> str:
-    return json.dumps(definition, sort_keys=True)
+def _plain(value: Any) -> Any:
+    """numpy arrays and numbers (a camera position computed with numpy) as lists and
+    numbers, which a scene's tables hold."""
+    if hasattr(value, "tolist"):
+        return value.tolist()
+    raise TypeError(f"a scene holds numbers, strings, lists and tables, not {type(value).__name__}")
+
+
+def _dump(definition: Dict[str, Any], **options: Any) -> str:
+    return json.dumps(definition, default=_plain, **options)
 
 
 def load(path: PathLike) -> Scene:
@@ -187,8 +195,8 @@ def load_dict(definition: Dict[str, Any], base_dir: PathLike = ".", name: str = 
     """Builds a scene from a dict shaped as a scene file (`{"camera": {...}, "objects":
     [...]}`); relative paths resolve against `base_dir`. The scene keeps a copy."""
     definition = copy.deepcopy(definition)
-    text = json.dumps(definition, indent=2)
+    text = _dump(definition, indent=2)
     scene = loads(text, "json", base_dir, name)
     scene._definition = definition
-    scene._built = _dump(definition)
+    scene._built = _dump(definition, sort_keys=True)
     return scene
