@@ -128,3 +128,10 @@ def test_many_renders_do_not_grow_the_process():
     assert count == 300
     grew = rss_mib() - before
     assert grew < 5, f"300 renders grew the process by {grew:.1f} MiB"
+
+
+def test_progress_true_shows_a_bar_that_ends_full(repo, capsys):
+    snell.render(repo / "scenes/seed.toml", width=32, height=32, spp=4, progress=True)
+    err = capsys.readouterr().err
+    # tqdm's bar where tqdm is installed, else snell's own line; either ends at 100 %.
+    assert "100%" in err.replace(" ", ""), err
