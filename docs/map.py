@@ -93,7 +93,9 @@ PAGE = {
  'picture.js': 'The picture and the status line: the newest frame (or debug view) shown, frames it could not keep up with skipped, the scene\'s exposure and curve followed in the controls, errors over the picture.',
  'explain.js': 'Pixels explained: the hover that names what is under the pointer, and a click\'s `/explain` answer shown as a tree, its hit points drawn over the picture.',
  'camera.js': 'Camera moves: a drag orbits, the wheel moves in and out, each sent to `/camera`; a press that does not move is a click to explain; the copy and reset buttons.',
- 'style.css': 'The page\'s look.',
+ 'style.css': 'The page\'s look (and the lab page\'s).',
+ 'lab.html': 'The sampling lab\'s page (`/lab`, linked from the preview): a material\'s form, the test\'s answer, and three canvases for the histograms.',
+ 'lab.js': 'The sampling lab\'s script: sends the form to `/lab/bsdf` and draws the samples\' histogram, the density\'s and their difference; a link with the form\'s values runs it at once.',
 }
 ORDER = ['src/','src/math/','src/sampler/','src/geometry/','src/geometry/mesh/','src/accel/','src/accel/wide/',
  'src/bsdf/','src/material/','src/texture/','src/light/','src/light/sky/','src/mesh_file/','src/mesh_file/obj/','src/mesh_file/ply/','src/mesh_file/gltf/',

@@ -317,6 +317,40 @@ fn browser_shows_follows_and_explains() {
         let png = driver.session_call("GET", "/screenshot", None);
         std::fs::write(path, base64(png.as_str().unwrap())).unwrap();
     }
+    // The sampling lab, linked from the page: a rough gold at 60 degrees tested and drawn.
+    let href = driver.run("return document.querySelector('a[href=\"/lab\"]').href");
+    driver.session_call("POST", "/url", Some(json!({ "url": href })));
+    driver.wait(
+        30,
+        "the lab's form",
+        "return document.getElementById('lab-form') && true",
+    );
+    driver.run(
+        "document.getElementById('lab-type').value = 'conductor'; \
+         document.getElementById('lab-metal').value = 'Au'; \
+         document.getElementById('lab-roughness').value = '0.2'; \
+         document.getElementById('lab-angle').value = '60'; \
+         document.getElementById('lab-run').click(); return true",
+    );
+    let done = driver.wait(
+        60,
+        "the lab's answer",
+        "return document.getElementById('lab-result').dataset.done || null",
+    );
+    assert_eq!(done, "passed");
+    let text = driver.run("return document.getElementById('lab-result').textContent");
+    let text = text.as_str().unwrap();
+    assert!(
+        text.starts_with("conductor (roughness = 0.2, metal = \"Au\"), light leaving at 60°"),
+        "{text}"
+    );
+    // The histogram was drawn: some pixel of the samples' panel is lit.
+    let lit = driver.run(
+        "const c = document.getElementById('lab-observed'); \
+         const d = c.getContext('2d').getImageData(0, 0, c.width, c.height).data; \
+         let n = 0; for (let i = 0; i < d.length; i += 4) if (d[i] > 0) n++; return n",
+    );
+    assert!(lit.as_u64().unwrap() > 100, "lit pixels: {lit}");
 }
 
 /// Standard base64, for the screenshot WebDriver sends.

@@ -443,3 +443,54 @@ fn the_frame_is_toned_as_the_render_writes_it() {
         "exposure 0 and clamp: {old}, the PNG {png}"
     );
 }
+
+/// The sampling lab's page, script and answers, and the queries it refuses: unknown keys and
+/// types, values out of range, a metal's name that is not a name.
+#[test]
+fn the_lab_answers_and_refuses_bad_queries() {
+    let dir = seed_copy("serve-lab");
+    let s = start(&dir, "scenes/seed.toml", &["--size", "32"]);
+    let p = s.port;
+    let page = get(p, "/lab");
+    assert_eq!(page.status, 200);
+    assert!(
+        page.text()
+            .contains("<script type=\"module\" src=\"/lab.js\">")
+    );
+    let script = get(p, "/lab.js");
+    assert!(
+        script
+            .header("content-type")
+            .unwrap()
+            .starts_with("text/javascript")
+    );
+    assert!(script.text().contains("'/lab/bsdf?'"));
+    assert!(get(p, "/").text().contains("href=\"/lab\""));
+    let ok = get(p, "/lab/bsdf?type=plastic&roughness=0.3&angle=40");
+    assert_eq!(ok.status, 200, "{}", ok.text());
+    let t = ok.json();
+    assert_eq!(t["passed"], true, "{t}");
+    assert_eq!(t["observed"].as_array().unwrap().len(), 40 * 80);
+    assert_eq!(t["samples"], 1 << 18);
+    let gold = get(p, "/lab/bsdf?type=conductor&metal=Au&roughness=0.2");
+    assert_eq!(gold.status, 200, "{}", gold.text());
+    let mut refused = 0;
+    for (query, said) in [
+        ("type=plastik", "did you mean `plastic`"),
+        ("type=plastic&samples=100000000", "samples"),
+        ("type=plastic&angle=95", "angle"),
+        ("type=plastic&roughness=abc", "roughness"),
+        ("type=plastic&roughness=-1", "roughness"),
+        ("type=diffuse&ior=1.5", "ior"),
+        ("type=conductor&metal=Au%22%0A%5Bx%5D", "metal"),
+        ("type=conductor&metal=Unobtainium", "metal"),
+        ("roughness=0.3", "type"),
+        ("type=plastic&type=diffuse", "type"),
+    ] {
+        let r = get(p, &format!("/lab/bsdf?{query}"));
+        assert_eq!(r.status, 400, "{query}: {}", r.text());
+        assert!(r.text().contains(said), "{query}: {}", r.text());
+        refused += 1;
+    }
+    assert_eq!(refused, 10);
+}

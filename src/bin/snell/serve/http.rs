@@ -32,6 +32,9 @@ const PICTURE: &str = include_str!("page/picture.js");
 const EXPLAIN: &str = include_str!("page/explain.js");
 const CAMERA: &str = include_str!("page/camera.js");
 const STYLE: &str = include_str!("page/style.css");
+/// The sampling lab's page and script.
+const LAB_PAGE: &str = include_str!("page/lab.html");
+const LAB_SCRIPT: &str = include_str!("page/lab.js");
 const JS: &str = "text/javascript; charset=utf-8";
 
 /// Event streams open at once; more are refused, so that tabs left open cannot use up the
@@ -88,6 +91,9 @@ pub(crate) fn router(ctx: Arc<Context>) -> Router {
         .route("/explain.js", get(|| async { page(JS, EXPLAIN) }))
         .route("/camera.js", get(|| async { page(JS, CAMERA) }))
         .route("/style.css", get(|| async { page("text/css; charset=utf-8", STYLE) }))
+        .route("/lab", get(|| async { page("text/html; charset=utf-8", LAB_PAGE) }))
+        .route("/lab.js", get(|| async { page(JS, LAB_SCRIPT) }))
+        .route("/lab/bsdf", get(super::lab::bsdf))
         .route("/events", get(events))
         .route("/status", get(|State(ctx): Ctx| async move { json(&status(&ctx)) }))
         .route("/frame.jpg", get(frame))
@@ -174,7 +180,7 @@ fn bytes(kind: &'static str, body: Arc<Vec<u8>>) -> Response {
         .into_response()
 }
 
-fn json(value: &serde_json::Value) -> Response {
+pub(super) fn json(value: &serde_json::Value) -> Response {
     (
         [(header::CONTENT_TYPE, "application/json")],
         value.to_string(),
@@ -182,7 +188,7 @@ fn json(value: &serde_json::Value) -> Response {
         .into_response()
 }
 
-fn error(status: StatusCode, message: &str) -> Response {
+pub(super) fn error(status: StatusCode, message: &str) -> Response {
     (
         status,
         [(header::CONTENT_TYPE, "text/plain; charset=utf-8")],
@@ -192,7 +198,7 @@ fn error(status: StatusCode, message: &str) -> Response {
 }
 
 /// Runs `f` off the async threads.
-async fn blocking(f: impl FnOnce() -> Response + Send + 'static) -> Response {
+pub(super) async fn blocking(f: impl FnOnce() -> Response + Send + 'static) -> Response {
     tokio::task::spawn_blocking(f).await.unwrap_or_else(|e| {
         error(
             StatusCode::INTERNAL_SERVER_ERROR,
@@ -217,7 +223,7 @@ struct PixelQuery {
 
 /// A query string read into `T` by axum (serde_urlencoded: percent-decoding, `+` as a
 /// space), or why it does not fit (a value of the wrong kind, a key given twice).
-type Asked<T> = Result<Query<T>, QueryRejection>;
+pub(super) type Asked<T> = Result<Query<T>, QueryRejection>;
 
 /// What a page shows besides the picture: the render's progress, the error, the camera.
 pub(crate) fn status(ctx: &Context) -> serde_json::Value {

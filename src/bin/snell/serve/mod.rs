@@ -5,6 +5,7 @@
 //! of its own, watch.rs watches the files.
 
 mod http;
+mod lab;
 mod preview;
 mod watch;
 
