@@ -55,7 +55,7 @@ fn job(
         &overrides,
         &Limits::default(),
         None,
-        0,
+        scene.scene.frame,
         scene.load_time,
     )
     .map_err(errors::job)

@@ -84,6 +84,14 @@ impl NativeScene {
             .collect()
     }
 
+    /// The frame of the animation it was built at (0 for a still), and the animation's
+    /// frames (1 for a still).
+    #[getter]
+    fn frame(&self) -> (u32, u32) {
+        let frames = self.scene.animation.as_ref().map_or(1, |a| a.frames);
+        (self.scene.frame, frames)
+    }
+
     /// Seconds the build took.
     #[getter]
     fn load_seconds(&self) -> f64 {
@@ -126,20 +134,26 @@ fn build(
     })
 }
 
-/// Reads, checks and builds the scene file `path` (`.toml` or `.json`).
+/// Reads, checks and builds the scene file `path` (`.toml` or `.json`), at `frame` of its
+/// animation.
 #[pyfunction]
-#[pyo3(signature = (path, assets=None))]
-pub fn load(py: Python<'_>, path: PathBuf, assets: Option<&Assets>) -> PyResult<NativeScene> {
+#[pyo3(signature = (path, assets=None, frame=0))]
+pub fn load(
+    py: Python<'_>,
+    path: PathBuf,
+    assets: Option<&Assets>,
+    frame: u32,
+) -> PyResult<NativeScene> {
     let file = path.clone();
     build(py, path, assets, move |cache| {
-        snell::scene::load_frame(&file, &Limits::default(), 0, cache)
+        snell::scene::load_frame(&file, &Limits::default(), frame, cache)
     })
 }
 
 /// Builds a scene from `text` in `format` (`"toml"` or `"json"`), named `name` in
-/// messages, its relative paths resolved against `base_dir`.
+/// messages, its relative paths resolved against `base_dir`, at `frame` of its animation.
 #[pyfunction]
-#[pyo3(signature = (text, format, name, base_dir, assets=None))]
+#[pyo3(signature = (text, format, name, base_dir, assets=None, frame=0))]
 pub fn loads(
     py: Python<'_>,
     text: String,
@@ -147,6 +161,7 @@ pub fn loads(
     name: PathBuf,
     base_dir: PathBuf,
     assets: Option<&Assets>,
+    frame: u32,
 ) -> PyResult<NativeScene> {
     let format = match format.to_ascii_lowercase().as_str() {
         "toml" => Format::Toml,
@@ -165,7 +180,7 @@ pub fn loads(
             Path::new(&base_dir),
             format,
             &Limits::default(),
-            0,
+            frame,
             cache,
         )
     })

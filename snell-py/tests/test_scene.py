@@ -149,3 +149,19 @@ def test_numpy_values_are_taken_as_numbers_and_other_objects_refused():
         snell.render(snell.loads(SMALL), width=10**12)
     with pytest.raises(snell.SettingsError):
         snell.render(snell.loads(SMALL), width=0)
+
+
+def test_a_frame_of_an_animation_is_the_command_lines_frame(repo, run_cli, tmp_path):
+    scene = snell.load(repo / "scenes/orbit.toml", frame=5)
+    assert (scene.frame, scene.frames) == (5, 48)
+    img = snell.render(scene, width=48, height=32, spp=1)
+    run_cli("render", repo / "scenes/orbit.toml", "--frames", "5..5", "-o", tmp_path / "f.exr",
+            "--width", 48, "--height", 32, "--spp", 1, "--quiet")
+    assert np.array_equal(img, snell.read(tmp_path / "f.exr"))
+    later = scene.at_frame(24)
+    assert later.frame == 24 and scene.frame == 5
+    assert not np.array_equal(snell.render(later, width=48, height=32, spp=1), img)
+    with pytest.raises(snell.SceneError, match="frame 60 was asked for"):
+        snell.load(repo / "scenes/orbit.toml", frame=60)
+    with pytest.raises(snell.SceneError, match="no \\[animation\\]"):
+        snell.load(repo / "scenes/seed.toml", frame=3)

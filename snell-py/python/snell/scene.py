@@ -27,8 +27,9 @@ class Scene:
     built from it. Build one with `snell.load`, `snell.loads` or `snell.load_dict`."""
 
     def __init__(self, native: "_snell.NativeScene", text: str, format: str, base_dir: str, name: str,
-                 assets: "_snell.Assets") -> None:
+                 assets: "_snell.Assets", frame: int = 0) -> None:
         self._native = native
+        self._frame = frame
         self._text = text
         self._format = format
         self._base_dir = base_dir
@@ -95,7 +96,8 @@ class Scene:
 
     def copy(self) -> "Scene":
         """An independent copy (its own definition; the images read are shared)."""
-        other = Scene(self._native, self._text, self._format, self._base_dir, self._name, self._assets)
+        other = Scene(self._native, self._text, self._format, self._base_dir, self._name, self._assets,
+                      self._frame)
         if self._definition is not None:
             other._definition = copy.deepcopy(self._definition)
             other._built = self._built
@@ -112,7 +114,8 @@ class Scene:
                 text = _dump(self._definition, indent=2)
                 # Messages name the edited text (`scene.source`), whose lines they count.
                 name = f"{self._name} (edited)"
-                self._native = _snell.loads(text, "json", name, self._base_dir, self._assets)
+                self._native = _snell.loads(text, "json", name, self._base_dir, self._assets,
+                                            self._frame)
                 self._text, self._format, self._built = text, "json", now
         return self._native
 
@@ -128,6 +131,34 @@ class Scene:
             "integrator": integrator,
             "max_depth": max_depth,
         }
+
+    @property
+    def frame(self) -> int:
+        """The frame of the scene's `[animation]` it is built at (0 for a still)."""
+        return self._frame
+
+    @property
+    def frames(self) -> int:
+        """How many frames the scene's `[animation]` has (1 for a still)."""
+        return self.build().frame[1]
+
+    def at_frame(self, frame: int) -> "Scene":
+        """The scene at another frame of its animation: a copy built there (its edits and the
+        images read kept)."""
+        other = self.copy()
+        other._frame = int(frame)
+        other._native = _snell.loads(other._source_now(), other._format, other._name_now(),
+                                     other._base_dir, other._assets, other._frame)
+        return other
+
+    def _source_now(self) -> str:
+        return _dump(self._definition, indent=2) if self._edited() else self._text
+
+    def _name_now(self) -> str:
+        return f"{self._name} (edited)" if self._edited() else self._name
+
+    def _edited(self) -> bool:
+        return self._definition is not None and _dump(self._definition, sort_keys=True) != self._built
 
     @property
     def path(self) -> str:
@@ -171,32 +202,35 @@ def _dump(definition: Dict[str, Any], **options: Any) -> str:
     return json.dumps(definition, default=_plain, **options)
 
 
-def load(path: PathLike) -> Scene:
-    """Reads, checks and builds the scene file `path` (`.toml` or `.json`); relative paths
-    in it resolve against its folder. Raises `SceneError` with every problem found."""
+def load(path: PathLike, frame: int = 0) -> Scene:
+    """Reads, checks and builds the scene file `path` (`.toml` or `.json`) at `frame` of its
+    `[animation]` (a still has frame 0 only); relative paths in it resolve against its
+    folder. Raises `SceneError` with every problem found."""
     name = os.fspath(path)
     assets = _snell.Assets()
-    native = _snell.load(name, assets)
+    native = _snell.load(name, assets, frame)
     fmt = "json" if name.lower().endswith(".json") else "toml"
     base = os.path.dirname(name) or "."
-    return Scene(native, native.source, fmt, base, name, assets)
+    return Scene(native, native.source, fmt, base, name, assets, frame)
 
 
-def loads(text: str, format: str = "toml", base_dir: PathLike = ".", name: str = "<string>") -> Scene:
-    """Builds a scene from `text` (`format` `"toml"` or `"json"`); relative paths resolve
-    against `base_dir`, and messages name it `name`."""
+def loads(text: str, format: str = "toml", base_dir: PathLike = ".", name: str = "<string>",
+          frame: int = 0) -> Scene:
+    """Builds a scene from `text` (`format` `"toml"` or `"json"`) at `frame` of its
+    animation; relative paths resolve against `base_dir`, and messages name it `name`."""
     fmt = format.lower()
     assets = _snell.Assets()
-    native = _snell.loads(text, fmt, name, os.fspath(base_dir), assets)
-    return Scene(native, text, fmt, os.fspath(base_dir), name, assets)
+    native = _snell.loads(text, fmt, name, os.fspath(base_dir), assets, frame)
+    return Scene(native, text, fmt, os.fspath(base_dir), name, assets, frame)
 
 
-def load_dict(definition: Dict[str, Any], base_dir: PathLike = ".", name: str = "<dict>") -> Scene:
+def load_dict(definition: Dict[str, Any], base_dir: PathLike = ".", name: str = "<dict>",
+              frame: int = 0) -> Scene:
     """Builds a scene from a dict shaped as a scene file (`{"camera": {...}, "objects":
     [...]}`); relative paths resolve against `base_dir`. The scene keeps a copy."""
     definition = copy.deepcopy(definition)
     text = _dump(definition, indent=2)
-    scene = loads(text, "json", base_dir, name)
+    scene = loads(text, "json", base_dir, name, frame)
     scene._definition = definition
     scene._built = _dump(definition, sort_keys=True)
     return scene
