@@ -92,8 +92,15 @@ pub fn load_str_frame(
     frame: u32,
 ) -> Result<Scene, SceneError> {
     let mut assets = AssetCache::default();
-    let limits = Limits::default();
-    build(text, file, base_dir, format, &limits, frame, &mut assets)
+    load_str_with(
+        text,
+        file,
+        base_dir,
+        format,
+        &Limits::default(),
+        frame,
+        &mut assets,
+    )
 }
 
 /// As [`load_str_frame`], checked against `limits` and reusing the images and meshes
