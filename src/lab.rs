@@ -14,6 +14,9 @@ use crate::math::{Color, Ray, Vec3A, hash_seed};
 use crate::scene::format::MaterialKind;
 use std::path::Path;
 
+/// The bins every experiment of the lab uses: 40 bands of 4.5 degrees by 80 sectors.
+pub const BINS: SphereBins = SphereBins { theta: 40, phi: 80 };
+
 /// A material's BSDF, as a render builds it at a point facing the viewer.
 #[derive(Clone, Debug)]
 pub struct LabBsdf {
@@ -138,7 +141,9 @@ pub fn warp_test(
 ) -> Result<WarpTest, String> {
     let (mut specular, mut absorbed) = (0, 0);
     let mut inconsistent = None;
-    // The lobe choice from a hash of the sample's number (as the tests choose it).
+    // The lobe choice from a hash of the sample's number, not a second PCG stream: streams
+    // of one generator can be correlated, and a correlated choice biases the directions it
+    // keeps.
     let mut k = 0u64;
     let observed = chi2::sphere_histogram(bins, samples, |u| {
         k += 1;
@@ -162,16 +167,14 @@ pub fn warp_test(
         Some(s.wi)
     })?;
     let expected = chi2::sphere_expected(bins, samples, |wi| bsdf.pdf(wo, wi));
-    Ok(WarpTest {
+    Ok(WarpTest::new(
         bins,
         samples,
-        specular,
-        absorbed,
-        chi2: chi2::compare(&observed, &expected),
+        (specular, absorbed),
         observed,
         expected,
         inconsistent,
-    })
+    ))
 }
 
 /// A scene's light sampling seen from the point `from`: where next-event estimation's
@@ -228,16 +231,14 @@ pub fn light_test(
             first_disagreement.unwrap_or_default()
         )
     });
-    Ok(WarpTest {
+    Ok(WarpTest::new(
         bins,
         samples,
-        specular,
-        absorbed,
-        chi2: chi2::compare(&observed, &expected),
+        (specular, absorbed),
         observed,
         expected,
         inconsistent,
-    })
+    ))
 }
 
 /// The density per unit solid angle with which next-event estimation from `from` picks
@@ -274,6 +275,27 @@ pub fn leaving_at(degrees: f32) -> Vec3A {
 }
 
 impl WarpTest {
+    /// The test of `observed` counts against `expected` ones, the chi-square worked out.
+    fn new(
+        bins: SphereBins,
+        samples: usize,
+        (specular, absorbed): (usize, usize),
+        observed: Vec<f64>,
+        expected: Vec<f64>,
+        inconsistent: Option<String>,
+    ) -> Self {
+        WarpTest {
+            bins,
+            samples,
+            specular,
+            absorbed,
+            chi2: chi2::compare(&observed, &expected),
+            observed,
+            expected,
+            inconsistent,
+        }
+    }
+
     /// Whether the samples follow the density and agree with the BSDF's values.
     pub fn passed(&self) -> bool {
         self.chi2.passed() && self.inconsistent.is_none()

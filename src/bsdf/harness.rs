@@ -4,8 +4,8 @@
 //! receives, and it is reciprocal.
 
 use super::Bsdf;
-use crate::math::chi2::{SphereBins, chi2_sphere};
-use crate::math::{Rng, Vec3A, hash_seed};
+use crate::math::chi2::{SAMPLES, SphereBins};
+use crate::math::{Rng, Vec3A};
 use std::f32::consts::PI;
 
 /// Directions of the light's viewer `wo` the checks run at: from straight above to grazing,
@@ -21,43 +21,27 @@ pub(crate) fn incidences() -> Vec<Vec3A> {
     v
 }
 
-/// Chi-square of the sampling at every incidence, and the consistency of each sample.
+/// Chi-square of the sampling at every incidence, and the consistency of each sample (the
+/// lab's test, `snell lab bsdf`, at the tests' default bins).
 pub(crate) fn chi2_all_incidences(name: &str, bsdf: &Bsdf) {
     for wo in incidences() {
-        let mut inconsistent = None;
-        // The lobe choice from a hash of the sample's number, not a second PCG stream:
-        // streams of one generator can be correlated, and a correlated choice biases the
-        // directions it keeps.
-        let mut k = 0u64;
-        let mut uc = || {
-            k += 1;
-            (hash_seed(&[k, 0x10be]) >> 40) as f32 / (1u64 << 24) as f32
-        };
-        let result = chi2_sphere(
-            &format!("{name} at wo = {wo}"),
-            SphereBins::default(),
-            |u| {
-                let s = bsdf.sample(wo, u, uc())?;
-                if s.lobe.is_specular() {
-                    return None;
-                }
-                let (f, pdf) = (bsdf.f(wo, s.wi), bsdf.pdf(wo, s.wi));
-                let close = |a: f32, b: f32| (a - b).abs() <= 1e-4 * a.abs().max(b.abs()).max(1e-3);
-                if inconsistent.is_none()
-                    && !(close(s.pdf, pdf) && (0..3).all(|k| close(s.f[k], f[k])))
-                {
-                    inconsistent = Some(format!(
-                        "sample {s:?}, but f = {f} and pdf = {pdf} for its direction"
-                    ));
-                }
-                Some(s.wi)
-            },
-            |wi| bsdf.pdf(wo, wi),
-        );
-        if let Err(e) = result {
-            panic!("{e}");
+        let t = crate::lab::warp_test(bsdf, wo, SAMPLES, SphereBins::default())
+            .unwrap_or_else(|e| panic!("{name} at wo = {wo}: {e}"));
+        let c = &t.chi2;
+        if c.stray > 10.0 {
+            panic!(
+                "{name} at wo = {wo}: {} samples fell where the density is 0",
+                c.stray
+            );
         }
-        if let Some(e) = inconsistent {
+        if !c.passed() {
+            let (bin, o, e) = c.worst.unwrap_or((0, 0.0, 0.0));
+            panic!(
+                "{name} at wo = {wo}: the samples do not follow the density: chi^2 = {:.1} with {} degrees of freedom, p = {:.3e}; bin {bin} has {o} samples where {e:.1} are expected",
+                c.chi2, c.dof, c.p
+            );
+        }
+        if let Some(e) = t.inconsistent {
             panic!("{name} at wo = {wo}: {e}");
         }
     }

@@ -2,8 +2,7 @@
 //! a chi-square test and drawn as histograms (snell::lab).
 
 use clap::{Args, Subcommand};
-use snell::lab::{WarpTest, leaving_at, light_test, material_bsdf, warp_test};
-use snell::math::chi2::SphereBins;
+use snell::lab::{BINS, WarpTest, leaving_at, light_test, material_bsdf, warp_test};
 use snell::scene::format::MaterialKind;
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -117,23 +116,42 @@ pub(crate) fn lab(command: LabCommand) -> ExitCode {
     }
 }
 
+/// Bad input: the message, exit 2.
+fn fail(message: String) -> ExitCode {
+    eprintln!("error: {message}");
+    ExitCode::from(2)
+}
+
+/// Refuses sample counts too few to test or too many to wait for.
+fn check_samples(samples: usize) -> Result<(), ExitCode> {
+    if (1_000..=1 << 26).contains(&samples) {
+        return Ok(());
+    }
+    Err(fail(format!(
+        "--samples {samples} is not between 1000 and {}",
+        1u64 << 26
+    )))
+}
+
+/// The picture's file, reserved before the work so that a bad path fails at once.
+fn reserve(
+    output: Option<&std::path::Path>,
+) -> Result<Option<snell::output::PendingOutput>, ExitCode> {
+    output
+        .map(snell::output::PendingOutput::create)
+        .transpose()
+        .map_err(|e| fail(e.to_string()))
+}
+
 fn bsdf(args: BsdfArgs) -> ExitCode {
-    let fail = |message: String| {
-        eprintln!("error: {message}");
-        ExitCode::from(2)
-    };
     if !(0.0..=89.0).contains(&args.angle) {
         return fail(format!(
             "--angle {} is not between 0 and 89 degrees from the normal",
             args.angle
         ));
     }
-    if !(1_000..=1 << 26).contains(&args.samples) {
-        return fail(format!(
-            "--samples {} is not between 1000 and {}",
-            args.samples,
-            1u64 << 26
-        ));
+    if let Err(code) = check_samples(args.samples) {
+        return code;
     }
     let mut params = args.params.clone();
     for (key, value) in [("roughness", &args.roughness), ("ior", &args.ior)] {
@@ -145,15 +163,9 @@ fn bsdf(args: BsdfArgs) -> ExitCode {
         Ok(lab) => lab,
         Err(e) => return fail(format!("the material cannot be built:\n{e}")),
     };
-    // Reserve the picture's file before the work, so a bad path fails at once.
-    let out = match args
-        .output
-        .as_deref()
-        .map(snell::output::PendingOutput::create)
-    {
-        Some(Err(e)) => return fail(e.to_string()),
-        Some(Ok(o)) => Some(o),
-        None => None,
+    let out = match reserve(args.output.as_deref()) {
+        Ok(out) => out,
+        Err(code) => return code,
     };
     let t = warp_test(&lab.bsdf, leaving_at(args.angle), args.samples, BINS);
     let title = format!(
@@ -169,20 +181,9 @@ fn bsdf(args: BsdfArgs) -> ExitCode {
     )
 }
 
-/// The bins of every experiment: 40 bands of 4.5 degrees by 80 sectors.
-const BINS: SphereBins = SphereBins { theta: 40, phi: 80 };
-
 fn light(args: LightArgs) -> ExitCode {
-    let fail = |message: String| {
-        eprintln!("error: {message}");
-        ExitCode::from(2)
-    };
-    if !(1_000..=1 << 26).contains(&args.samples) {
-        return fail(format!(
-            "--samples {} is not between 1000 and {}",
-            args.samples,
-            1u64 << 26
-        ));
+    if let Err(code) = check_samples(args.samples) {
+        return code;
     }
     let scene = match snell::scene::load(&args.scene) {
         Ok(s) => s,
@@ -191,14 +192,9 @@ fn light(args: LightArgs) -> ExitCode {
             return ExitCode::from(2);
         }
     };
-    let out = match args
-        .output
-        .as_deref()
-        .map(snell::output::PendingOutput::create)
-    {
-        Some(Err(e)) => return fail(e.to_string()),
-        Some(Ok(o)) => Some(o),
-        None => None,
+    let out = match reserve(args.output.as_deref()) {
+        Ok(out) => out,
+        Err(code) => return code,
     };
     let [x, y, z] = args.from;
     let t = light_test(&scene, snell::math::Vec3A::new(x, y, z), args.samples, BINS);
@@ -269,8 +265,7 @@ fn report(
     if let Some(out) = out {
         let path = out.path().to_path_buf();
         if let Err(e) = out.commit(&t.image(6)) {
-            eprintln!("error: {e}");
-            return ExitCode::from(2);
+            return fail(e.to_string());
         }
         println!(
             "wrote {}: the samples' histogram | the density's | their difference (red more, blue fewer, in standard deviations); {axes}, phi across",

@@ -4,8 +4,7 @@
 use super::http::{Asked, blocking, error, json};
 use axum::http::StatusCode;
 use axum::response::Response;
-use snell::lab::{leaving_at, material_bsdf, warp_test};
-use snell::math::chi2::SphereBins;
+use snell::lab::{BINS, leaving_at, material_bsdf, warp_test};
 
 /// Samples per test: a quarter of the command line's million, so an answer takes a fraction
 /// of a second and a page cannot keep the server busy for long.
@@ -60,8 +59,7 @@ pub(crate) async fn bsdf(q: Asked<BsdfQuery>) -> Response {
             Ok(lab) => lab,
             Err(e) => return error(StatusCode::BAD_REQUEST, &e.to_string()),
         };
-        let bins = SphereBins { theta: 40, phi: 80 };
-        match warp_test(&lab.bsdf, leaving_at(angle), SAMPLES, bins) {
+        match warp_test(&lab.bsdf, leaving_at(angle), SAMPLES, BINS) {
             Ok(t) => json(&serde_json::json!({
                 "title": lab.title,
                 "angle": angle,
@@ -73,7 +71,7 @@ pub(crate) async fn bsdf(q: Asked<BsdfQuery>) -> Response {
                 "p": t.chi2.p,
                 "passed": t.passed(),
                 "inconsistent": t.inconsistent,
-                "bins": [bins.theta, bins.phi],
+                "bins": [BINS.theta, BINS.phi],
                 "observed": t.observed,
                 "expected": t.expected,
             })),
