@@ -7,7 +7,7 @@ use crate::images::{channels_array, image_array};
 use crate::scene::NativeScene;
 use pyo3::exceptions::{PyKeyboardInterrupt, PyRuntimeError};
 use pyo3::prelude::*;
-use pyo3::types::PyDict;
+use pyo3::types::{IntoPyDict, PyDict};
 use snell::integrator::aov::Aov;
 use snell::job::{Overrides, RenderJob};
 use snell::render::render_aovs;
@@ -32,7 +32,6 @@ fn integrator(name: &str) -> PyResult<IntegratorKind> {
 }
 
 /// The scene with the caller's settings, checked as `snell render` checks its flags.
-#[allow(clippy::too_many_arguments)]
 fn job(
     scene: &NativeScene,
     spp: Option<u32>,
@@ -156,8 +155,6 @@ pub fn render<'py>(
     out.set_item("aovs", views_out)?;
     Ok(out)
 }
-
-use pyo3::types::IntoPyDict;
 
 /// Runs `job` on other threads while this one, every [`POLL`], takes the interpreter's
 /// lock to call `progress(done, total)` and to check for signals. A signal's exception (or

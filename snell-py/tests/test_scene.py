@@ -161,6 +161,13 @@ def test_a_frame_of_an_animation_is_the_command_lines_frame(repo, run_cli, tmp_p
     later = scene.at_frame(24)
     assert later.frame == 24 and scene.frame == 5
     assert not np.array_equal(snell.render(later, width=48, height=32, spp=1), img)
+    # An edit not yet built goes with the copy to its frame (the TOML file's scene, edited,
+    # is built from its tables as JSON).
+    scene.camera["fov"] = 20
+    narrow = scene.at_frame(24)
+    assert narrow.camera["fov"] == 20 and "(edited)" not in narrow.path
+    assert not np.array_equal(snell.render(narrow, width=48, height=32, spp=1),
+                              snell.render(later, width=48, height=32, spp=1))
     with pytest.raises(snell.SceneError, match="frame 60 was asked for"):
         snell.load(repo / "scenes/orbit.toml", frame=60)
     with pytest.raises(snell.SceneError, match="no \\[animation\\]"):

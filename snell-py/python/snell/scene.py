@@ -26,7 +26,7 @@ class Scene:
     """A scene: its definition (`definition`, a dict as the scene file has it) and the scene
     built from it. Build one with `snell.load`, `snell.loads` or `snell.load_dict`."""
 
-    def __init__(self, native: "_snell.NativeScene", text: str, format: str, base_dir: str, name: str,
+    def __init__(self, native: Optional["_snell.NativeScene"], text: str, format: str, base_dir: str, name: str,
                  assets: "_snell.Assets", frame: int = 0) -> None:
         self._native = native
         self._frame = frame
@@ -34,6 +34,8 @@ class Scene:
         self._format = format
         self._base_dir = base_dir
         self._name = name
+        # The name messages give the text built from: `(edited)` after an edit.
+        self._message_name = name
         self._assets = assets
         self._definition: Optional[Dict[str, Any]] = None
         # The definition as last built, to tell whether it has been edited since.
@@ -98,6 +100,7 @@ class Scene:
         """An independent copy (its own definition; the images read are shared)."""
         other = Scene(self._native, self._text, self._format, self._base_dir, self._name, self._assets,
                       self._frame)
+        other._message_name = self._message_name
         if self._definition is not None:
             other._definition = copy.deepcopy(self._definition)
             other._built = self._built
@@ -106,17 +109,19 @@ class Scene:
     # ---- the built scene -----------------------------------------------------------------
 
     def build(self) -> "_snell.NativeScene":
-        """The scene built from its definition as it is now: built again (raising
-        `SceneError` for any problem) if the definition changed since the last build."""
+        """The scene built from its definition as it is now, at its frame: built again
+        (raising `SceneError` for any problem) if the definition changed since the last
+        build."""
         if self._definition is not None:
             now = _dump(self._definition, sort_keys=True)
             if now != self._built:
-                text = _dump(self._definition, indent=2)
                 # Messages name the edited text (`scene.source`), whose lines they count.
-                name = f"{self._name} (edited)"
-                self._native = _snell.loads(text, "json", name, self._base_dir, self._assets,
-                                            self._frame)
-                self._text, self._format, self._built = text, "json", now
+                self._text, self._format, self._built = _dump(self._definition, indent=2), "json", now
+                self._message_name = f"{self._name} (edited)"
+                self._native = None
+        if self._native is None or self._native.frame[0] != self._frame:
+            self._native = _snell.loads(self._text, self._format, self._message_name, self._base_dir,
+                                        self._assets, self._frame)
         return self._native
 
     @property
@@ -147,18 +152,8 @@ class Scene:
         images read kept)."""
         other = self.copy()
         other._frame = int(frame)
-        other._native = _snell.loads(other._source_now(), other._format, other._name_now(),
-                                     other._base_dir, other._assets, other._frame)
+        other.build()
         return other
-
-    def _source_now(self) -> str:
-        return _dump(self._definition, indent=2) if self._edited() else self._text
-
-    def _name_now(self) -> str:
-        return f"{self._name} (edited)" if self._edited() else self._name
-
-    def _edited(self) -> bool:
-        return self._definition is not None and _dump(self._definition, sort_keys=True) != self._built
 
     @property
     def path(self) -> str:
