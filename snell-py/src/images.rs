@@ -51,13 +51,11 @@ fn to_image(array: &PyReadonlyArray3<'_, f32>) -> PyResult<Image> {
     if w == 0 || h == 0 || w > u32::MAX as usize || h > u32::MAX as usize {
         return Err(errors::value(format!("an image of {w} x {h} pixels")));
     }
+    // Each pixel's three values, row by row (whatever the array's strides).
     let pixels = a
-        .outer_iter()
-        .flat_map(|row| {
-            row.outer_iter()
-                .map(|p| Color::new(p[0], p[1], p[2]))
-                .collect::<Vec<_>>()
-        })
+        .lanes(numpy::ndarray::Axis(2))
+        .into_iter()
+        .map(|p| Color::new(p[0], p[1], p[2]))
         .collect();
     Ok(Image {
         width: w as u32,
