@@ -47,6 +47,7 @@ pub mod integrator;
 pub mod job;
 pub mod lab;
 pub mod light;
+pub mod lpe;
 pub mod material;
 pub mod math;
 pub mod mesh_file;

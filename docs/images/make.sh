@@ -49,6 +49,8 @@ render debugging/earth-turned scenes/debugging/earth-turned.toml --width 256 --h
 render debugging/floor-stripes scenes/debugging/floor-stripes.toml --width 256 --height 256 --aov uv
 render debugging/sunken-cylinder scenes/debugging/sunken-cylinder.toml --width 256 --height 256 --aov object
 render debugging/glass-disk scenes/debugging/glass-disk.toml --width 256 --height 256
+render lpe/cornell scenes/cornell.toml --width 256 --height 256 --spp 1024 --lpe emission --lpe direct --lpe indirect
+render lpe/seed scenes/seed.toml --integrator path --width 256 --height 256 --spp 256 --lpe direct --lpe indirect --lpe specular --lpe caustics
 
 # lab NAME ARGS...: docs/images/NAME.png from `snell lab ARGS -o ...`.
 lab() {

@@ -15,6 +15,10 @@ pub struct Lambert {
 
 impl Scatter for Lambert {
     /// `R / pi` for directions on the same side, 0 across the surface.
+    fn f_diffuse(&self, wo: Vec3A, wi: Vec3A) -> Color {
+        self.f(wo, wi)
+    }
+
     fn f(&self, wo: Vec3A, wi: Vec3A) -> Color {
         if same_hemisphere(wo, wi) {
             self.r * FRAC_1_PI

@@ -25,6 +25,11 @@ impl Scatter for MetallicMix {
         self.metal.f(wo, wi) * self.metallic + self.dielectric.f(wo, wi) * (1.0 - self.metallic)
     }
 
+    /// The dielectric's base, in its share.
+    fn f_diffuse(&self, wo: Vec3A, wi: Vec3A) -> Color {
+        self.dielectric.f_diffuse(wo, wi) * (1.0 - self.metallic)
+    }
+
     /// The metal with chance `metallic`, else the dielectric, chosen by `uc` (whose
     /// remainder then chooses within the dielectric); then that part sampled. A delta
     /// (the smooth metal's mirror, the smooth coat's) carries its part's weight; any other

@@ -81,6 +81,12 @@ crate::closed_set! {
         /// angle (0 for the directions only a specular lobe reaches).
         fn pdf(&self, wo: Vec3A, wi: Vec3A) -> f32;
 
+        /// The part of `f(wo, wi)` that is diffuse (a Lambertian base's), the rest being
+        /// glossy: what light path expressions call `D` and `G` for a light sample.
+        fn f_diffuse(&self, wo: Vec3A, wi: Vec3A) -> Color {
+            Color::ZERO
+        }
+
         /// The variant's name, for `snell explain`.
         fn name(&self) -> &'static str;
 

@@ -25,6 +25,13 @@ pub enum PhongBase {
 }
 
 impl PhongBase {
+    fn f_diffuse(&self, wo: Vec3A, wi: Vec3A) -> Color {
+        match self {
+            PhongBase::Lambert(b) => b.f_diffuse(wo, wi),
+            PhongBase::Plastic(b) => b.f_diffuse(wo, wi),
+        }
+    }
+
     fn f(&self, wo: Vec3A, wi: Vec3A) -> Color {
         match self {
             PhongBase::Lambert(b) => b.f(wo, wi),
@@ -129,6 +136,15 @@ impl Scatter for PhongMix {
     fn f(&self, wo: Vec3A, wi: Vec3A) -> Color {
         if self.weights[0] > 0.0 {
             self.base.f(wo, wi) * self.weights[0]
+        } else {
+            Color::ZERO
+        }
+    }
+
+    /// The base's diffuse part, in its share.
+    fn f_diffuse(&self, wo: Vec3A, wi: Vec3A) -> Color {
+        if self.weights[0] > 0.0 {
+            self.base.f_diffuse(wo, wi) * self.weights[0]
         } else {
             Color::ZERO
         }

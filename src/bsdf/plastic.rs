@@ -141,6 +141,15 @@ impl Scatter for Plastic {
         }
     }
 
+    /// The base's lobe.
+    fn f_diffuse(&self, wo: Vec3A, wi: Vec3A) -> Color {
+        if same_hemisphere(wo, wi) {
+            self.diffuse(wo, wi)
+        } else {
+            Color::ZERO
+        }
+    }
+
     /// The coat's reflection or the base's, chosen by `uc`.
     fn sample(&self, wo: Vec3A, u: Vec2, uc: f32) -> Option<BsdfSample> {
         if wo.z == 0.0 {

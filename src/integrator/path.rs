@@ -18,6 +18,7 @@ use super::path_explain::{
 };
 use crate::bsdf::{Bsdf, BsdfSample};
 use crate::light::{Falloff, Light};
+use crate::lpe::LightFrom;
 use crate::math::differential::Differentials;
 use crate::math::distribution::power_heuristic;
 use crate::math::{Color, Frame, Ray, Vec2, Vec3A, offset_ray_origin};
@@ -30,6 +31,14 @@ pub struct Path;
 
 /// How much of a shadow ray's length is tested: the last part would meet the light itself.
 const SHADOW_SHORTEN: f32 = 1.0 - 1e-4;
+
+/// A light sample's event, for light path expressions: the part of its light the BSDF's
+/// diffuse part gave, which side of the surface the light is on, and which light.
+struct SampledLight {
+    diffuse: Color,
+    transmit: bool,
+    light: usize,
+}
 
 /// What a path needs at one of its vertices, in the surface's shading frame.
 struct Vertex {
@@ -86,8 +95,12 @@ impl Path {
         loop {
             rays.deepest = rays.deepest.max(depth);
             let Some(mut hit) = scene.closest_hit_skipping(&ray, f32::INFINITY, skip) else {
-                let c = beta * self.escaped(scene, &ray, depth, specular, prev_pdf);
+                let (le, environment) = self.escaped(scene, &ray, depth, specular, prev_pdf);
+                let c = beta * le;
                 l += c;
+                if R::EVENTS {
+                    rec.reached(c, LightFrom::Sky(environment));
+                }
                 if R::ACTIVE {
                     rec.end(PathEnd::Escaped {
                         contribution: c.to_array(),
@@ -130,6 +143,9 @@ impl Path {
                         self.emitter_weight(scene, &hit, specular, prev_pdf, prev_point);
                     let c = beta * le * w;
                     added += c;
+                    if R::EVENTS {
+                        rec.reached(c, LightFrom::Object(hit.object));
+                    }
                     if let Some(r) = &mut record {
                         r.emission = Some(EmissionRecord {
                             radiance: le.to_array(),
@@ -170,9 +186,12 @@ impl Path {
             let (u, ul) = (Vec2::new(b0, b1), Vec2::new(l0, l1));
             if v.bsdf.has_non_delta() {
                 let uc = sampler.next_choice();
-                let (c, lr) = self.light_sample::<R>(scene, &hit, &v, uc, ul, rays);
+                let (c, lr, event) = self.light_sample::<R>(scene, &hit, &v, uc, ul, rays);
                 let c = beta * c;
                 added += c;
+                if let Some(e) = event {
+                    rec.sampled(c, beta * e.diffuse, e.transmit, hit.material, e.light);
+                }
                 if let (Some(r), Some(mut lr)) = (&mut record, lr) {
                     lr.contribution = c.to_array();
                     r.light = Some(lr);
@@ -212,6 +231,9 @@ impl Path {
                     rec.end(PathEnd::Absorbed);
                 }
                 break;
+            }
+            if R::EVENTS {
+                rec.scattered(bs.lobe, hit.material);
             }
             eta_scale *= v.bsdf.radiance_scale(v.wo, bs.wi);
             specular = bs.lobe.is_specular();
@@ -262,10 +284,14 @@ impl Path {
                 rec.vertex(r);
             }
         }
-        match settings.clamp {
+        let clamped = match settings.clamp {
             Some(c) => l.min(Color::splat(c)),
             None => l,
+        };
+        if R::EVENTS {
+            rec.finished(l, clamped);
         }
+        clamped
     }
 
     /// The differentials of the ray a delta lobe sent on in direction `dir` from `hit`,
@@ -300,6 +326,7 @@ impl Path {
     /// What a path leaving the scene along `ray` sees: the environment (weighed by MIS
     /// against light sampling, unless the bounce before was a delta or the camera) or, where
     /// there is none or the camera may not see it, the background.
+    /// Whether it was the environment (`true`) or the background comes with it.
     fn escaped(
         &self,
         scene: &Scene,
@@ -307,17 +334,17 @@ impl Path {
         depth: u32,
         specular: bool,
         prev_pdf: f32,
-    ) -> Color {
+    ) -> (Color, bool) {
         match (scene.environment(), scene.environment_light) {
             (Some(env), Some(i)) if env.visible || depth > 1 => {
                 if specular {
-                    return env.radiance(ray.dir);
+                    return (env.radiance(ray.dir), true);
                 }
                 let (le, pdf) = env.radiance_pdf(ray.dir);
                 let p_light = scene.light_sampler.probability(i) * pdf;
-                le * power_heuristic(prev_pdf, p_light)
+                (le * power_heuristic(prev_pdf, p_light), true)
             }
-            _ => scene.background,
+            _ => (scene.background, false),
         }
     }
 
@@ -356,13 +383,13 @@ impl Path {
         uc: f32,
         ul: Vec2,
         rays: &mut RayStats,
-    ) -> (Color, Option<LightSampleRecord>) {
+    ) -> (Color, Option<LightSampleRecord>, Option<SampledLight>) {
         let Some(mut c) =
             scene
                 .light_sampler
                 .sample(&scene.lights, hit.point, uc, ul, Falloff::InverseSquare)
         else {
-            return (Color::ZERO, None);
+            return (Color::ZERO, None, None);
         };
         // A textured light's radiance is read where the sample lies on it.
         if let Some(light) = scene.area_light(c.light)
@@ -377,7 +404,7 @@ impl Path {
             c.radiance = scene.emission_at(light, origin, c.to_light, c.distance);
         }
         if c.pdf.is_nan() || c.pdf <= 0.0 {
-            return (Color::ZERO, None);
+            return (Color::ZERO, None, None);
         }
         let wi = v.frame.to_local(c.to_light);
         // The light sample's MIS weight, and the BSDF's density it weighs against.
@@ -425,12 +452,14 @@ impl Path {
                 record(Some(
                     "the shading and the true normal disagree about its side",
                 )),
+                None,
             );
         }
         if f == Color::ZERO {
             return (
                 Color::ZERO,
                 record(Some("the BSDF returns nothing toward it")),
+                None,
             );
         }
         let side = if outward { v.ng } else { -v.ng };
@@ -442,10 +471,15 @@ impl Path {
             f32::INFINITY
         };
         if scene.occluded(&shadow, t_max, scene.leaving(hit, outward)) {
-            return (Color::ZERO, record(Some("the shadow ray is blocked")));
+            return (Color::ZERO, record(Some("the shadow ray is blocked")), None);
         }
         let (w, _) = weight();
-        (f * c.radiance * (w / c.pdf), record(None))
+        let event = R::EVENTS.then(|| SampledLight {
+            diffuse: v.bsdf.f_diffuse(v.wo, wi) * wi.z.abs() * c.radiance * (w / c.pdf),
+            transmit: wi.z * v.wo.z < 0.0,
+            light: c.light,
+        });
+        (f * c.radiance * (w / c.pdf), record(None), event)
     }
 
     /// The world direction of a BSDF sample and whether it passes through the surface;

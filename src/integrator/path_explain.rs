@@ -4,16 +4,40 @@
 //! and what each vertex adds. The path tracer reports to a [`PathRecorder`]; rendering passes
 //! [`NoPathRecord`], whose calls compile away.
 
+use crate::bsdf::Lobe;
+use crate::lpe::LightFrom;
+use crate::math::Color;
 use serde::Serialize;
 
-/// Receives a path as the path tracer follows it.
+/// Receives a path as the path tracer follows it: its records (what `explain` prints), or
+/// its events (which light path expressions follow, `crate::lpe::Tracker`).
 pub trait PathRecorder {
     /// Whether anything is recorded (`false` lets the compiler drop the recording).
     const ACTIVE: bool;
+    /// Whether the path's events are wanted (`false` lets the compiler drop them).
+    const EVENTS: bool = false;
     /// A vertex of the path, once all it adds is known.
     fn vertex(&mut self, v: VertexRecord);
     /// How the path ended.
     fn end(&mut self, end: PathEnd);
+    /// The path went on, scattered by `lobe` at a surface of material `material`.
+    fn scattered(&mut self, _lobe: Lobe, _material: usize) {}
+    /// Light `c` (throughput and MIS weight applied) that the path met itself.
+    fn reached(&mut self, _c: Color, _from: LightFrom) {}
+    /// Light `c` from the scene's light `light` by next-event estimation at a surface of
+    /// material `material`, `diffuse` of it by the BSDF's diffuse part; `transmit` where
+    /// the light is on the other side of the surface.
+    fn sampled(
+        &mut self,
+        _c: Color,
+        _diffuse: Color,
+        _transmit: bool,
+        _material: usize,
+        _light: usize,
+    ) {
+    }
+    /// The sample came to `l`, and to `clamped` after the integrator's clamp.
+    fn finished(&mut self, _l: Color, _clamped: Color) {}
 }
 
 /// Records nothing: what rendering uses.

@@ -132,7 +132,31 @@ impl PixelJob<'_> {
         rays: &mut RayStats,
         bad: &mut BadSamples,
     ) {
-        let (scene, integrator, camera) = (self.scene, self.integrator, self.camera);
+        let (scene, integrator) = (self.scene, self.integrator);
+        self.add_samples_with(
+            x,
+            y,
+            samples,
+            (pixel, rays, bad),
+            |ray, sampler, rays| integrator.radiance_sampled(scene, ray, sampler, rays),
+            |_| {},
+        );
+    }
+
+    /// [`PixelJob::add_samples`] with each sample's colour from `trace` (given the camera
+    /// ray, the sampler started at the sample, and the ray counts), and `kept(sign)` called
+    /// after each sample whose colour is added to the pixel (finite), with the sign of its
+    /// filter weight: for a render that gathers more of each sample than its colour.
+    pub fn add_samples_with(
+        &self,
+        x: u32,
+        y: u32,
+        samples: Range<u32>,
+        (pixel, rays, bad): (&mut FilmPixel, &mut RayStats, &mut BadSamples),
+        mut trace: impl FnMut(&Ray, &mut Sampler, &mut RayStats) -> Color,
+        mut kept: impl FnMut(f32),
+    ) {
+        let (scene, camera) = (self.scene, self.camera);
         let s = &scene.settings;
         let mut sampler = Sampler::new(s.integrator.sampler, s.seed);
         let signed = s.filter.has_negative_lobes();
@@ -140,9 +164,12 @@ impl PixelJob<'_> {
             let (px, py, filter_sign) = start_sample(s, &mut sampler, x, y, index);
             let sign = if signed { filter_sign } else { 1.0 };
             let ray = camera_ray(camera, &mut sampler, px, py);
-            let c = integrator.radiance_sampled(scene, &ray, &mut sampler, rays);
+            let c = trace(&ray, &mut sampler, rays);
             match checked(scene, c, &ray, x, y, bad) {
-                Some(c) => pixel.add(c, sign),
+                Some(c) => {
+                    pixel.add(c, sign);
+                    kept(sign);
+                }
                 // Counted among the pixel's samples (passes take each index once), but not
                 // in its value.
                 None => pixel.add_sums(Color::ZERO, 0.0, Color::ZERO, 0.0, 1),

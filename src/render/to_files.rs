@@ -143,13 +143,16 @@ pub fn run(scene: &Scene, options: &RunOptions) -> Result<Finished, RunError> {
     })
 }
 
-/// A render's files, reserved before it starts: the picture, and its debug views as layers
-/// of the one EXR or as a PNG each beside the picture ([`Outputs::view_path`]).
+/// A render's files, reserved before it starts: the picture, and its debug views and light
+/// path expressions' images as layers of the one EXR or as a PNG each beside the picture
+/// ([`Outputs::view_path`], [`Outputs::layer_path`]).
 #[derive(Debug)]
 pub struct Outputs {
     picture: PendingOutput,
     views: Vec<Aov>,
     pngs: Vec<(Aov, PendingOutput)>,
+    /// The expressions' images: name, file where a PNG, and the image once rendered.
+    layers: Vec<(String, Option<PendingOutput>, Option<Image>)>,
 }
 
 impl Outputs {
@@ -159,6 +162,7 @@ impl Outputs {
             picture: PendingOutput::create(path)?,
             views: vec![],
             pngs: vec![],
+            layers: vec![],
         };
         outputs.add_views(views)?;
         Ok(outputs)
@@ -176,6 +180,38 @@ impl Outputs {
         Ok(())
     }
 
+    /// Adds the images of light path expressions named `names` to the files: for a PNG, a
+    /// file reserved for each.
+    pub fn add_layers(&mut self, names: &[String]) -> Result<(), OutputError> {
+        for name in names {
+            let png = if self.picture.format() == OutputFormat::Png {
+                Some(PendingOutput::create(&Self::layer_path(
+                    self.picture.path(),
+                    name,
+                ))?)
+            } else {
+                None
+            };
+            self.layers.push((name.clone(), png, None));
+        }
+        Ok(())
+    }
+
+    /// Gives the expressions' images, in the order of [`Outputs::add_layers`].
+    pub fn set_layer_images(&mut self, images: Vec<Image>) {
+        for (layer, image) in self.layers.iter_mut().zip(images) {
+            layer.2 = Some(image);
+        }
+    }
+
+    /// Where a PNG's light path expression named `name` goes: `out.direct.png`.
+    pub fn layer_path(out: &Path, name: &str) -> PathBuf {
+        let mut file = out.file_stem().unwrap_or_default().to_os_string();
+        file.push(format!(".{name}."));
+        file.push(out.extension().unwrap_or_default());
+        out.with_file_name(file)
+    }
+
     /// Where a PNG's debug view goes: `out.png` with the view's name before the extension,
     /// `out.normal.png`.
     pub fn view_path(out: &Path, view: Aov) -> PathBuf {
@@ -189,6 +225,9 @@ impl Outputs {
     pub fn make_partial(&mut self) {
         self.picture.make_partial();
         for (_, out) in &mut self.pngs {
+            out.make_partial();
+        }
+        for out in self.layers.iter_mut().filter_map(|l| l.1.as_mut()) {
             out.make_partial();
         }
     }
@@ -215,25 +254,54 @@ impl Outputs {
         threads: Option<usize>,
     ) -> Result<(), RunError> {
         let tone = &scene.settings.tone;
-        if self.views.is_empty() {
+        if self.views.is_empty() && self.layers.is_empty() {
             return Ok(self.picture.commit_toned(image, tone)?);
         }
-        let mut buffers = render_aovs(scene, threads)?;
-        if let Some(film) = film {
-            buffers.set_variance(film);
-        }
+        let buffers = if self.views.is_empty() {
+            None
+        } else {
+            let mut buffers = render_aovs(scene, threads)?;
+            if let Some(film) = film {
+                buffers.set_variance(film);
+            }
+            Some(buffers)
+        };
+        let black = Image::new(image.width, image.height);
         if self.picture.format() == OutputFormat::Exr {
-            let layers: Vec<ExrLayer> = self
-                .views
-                .iter()
-                .map(|&a| (a.name(), buffers.channels(a)))
-                .collect();
+            let mut layers: Vec<ExrLayer> = match &buffers {
+                Some(b) => self
+                    .views
+                    .iter()
+                    .map(|&a| (a.name(), b.channels(a)))
+                    .collect(),
+                None => vec![],
+            };
+            for (name, _, img) in &self.layers {
+                let img = img.as_ref().unwrap_or(&black);
+                let channel =
+                    |f: fn(&crate::math::Color) -> f32| img.pixels.iter().map(f).collect();
+                layers.push((
+                    name.as_str(),
+                    vec![
+                        ("R", channel(|c| c.x)),
+                        ("G", channel(|c| c.y)),
+                        ("B", channel(|c| c.z)),
+                    ],
+                ));
+            }
             let bytes = encode_exr_layers(image, &layers, self.picture.path())?;
             return Ok(self.picture.commit_bytes(&bytes)?);
         }
         self.picture.commit_toned(image, tone)?;
-        for (a, out) in self.pngs {
-            out.commit(&buffers.display(a, scene.settings.max_depth))?;
+        if let Some(buffers) = &buffers {
+            for (a, out) in self.pngs {
+                out.commit(&buffers.display(a, scene.settings.max_depth))?;
+            }
+        }
+        for (_, out, img) in self.layers {
+            if let Some(out) = out {
+                out.commit_toned(img.as_ref().unwrap_or(&black), tone)?;
+            }
         }
         Ok(())
     }

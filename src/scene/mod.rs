@@ -95,6 +95,13 @@ pub struct Scene {
     /// Every light, in one list: the point, spot and directional lights, then the emitting
     /// objects the path tracer samples as area lights, then the environment.
     pub lights: Vec<Light>,
+    /// The names of the point, spot and directional lights (the first of
+    /// [`Scene::lights`], in order): given by `name`, or the light's kind and index
+    /// (`point #0`); a glTF file's lights are its object's (`lamp light #0`).
+    pub light_names: Vec<String>,
+    /// The light path expressions of its `[[image.lpe]]`, each checked against it: the
+    /// images a render writes beside the picture.
+    pub lpe: Vec<crate::lpe::Request>,
     /// Per object, which of the lights it is (see [`Scene::area_light_at`]).
     pub area_light_of: Vec<crate::light::ObjectLights>,
     /// The choice among all lights by power, for the path tracer.

@@ -109,7 +109,7 @@ fn every_picture_is_made_by_the_script_with_the_samples_its_caption_gives() {
     assert_eq!(sized, lines.len());
     assert_eq!(
         (lines.len(), captions),
-        (22, 7),
+        (24, 7),
         "pictures made, captions with samples"
     );
     // The lab's pictures (`lab NAME ARGS...`): three panels of 80 x 40 bins, 6 pixels a bin,
@@ -138,6 +138,7 @@ fn every_picture_is_made_by_the_script_with_the_samples_its_caption_gives() {
         "docs/scene-format.md",
         "docs/preview.md",
         "docs/lab.md",
+        "docs/lpe.md",
     ] {
         let text = std::fs::read_to_string(repo(page)).unwrap();
         for (i, _) in text.match_indices("images/") {
@@ -150,12 +151,15 @@ fn every_picture_is_made_by_the_script_with_the_samples_its_caption_gives() {
                 continue;
             }
             shown += 1;
-            // A debug view's picture: `NAME.VIEW` beside NAME's, from `--aov`.
+            // A debug view's picture: `NAME.VIEW` beside NAME's, from `--aov`; or a light
+            // path expression's, from `--lpe VIEW` or `--lpe VIEW=EXPR`.
             let view = name.split_once('.').is_some_and(|(base, view)| {
                 lines.iter().any(|m| {
                     m.name == base
                         && m.flags.windows(2).any(|w| {
-                            w[0] == "--aov" && (w[1] == "all" || w[1].split(',').any(|v| v == view))
+                            (w[0] == "--aov"
+                                && (w[1] == "all" || w[1].split(',').any(|v| v == view)))
+                                || (w[0] == "--lpe" && w[1].split('=').next() == Some(view))
                         })
                 })
             });

@@ -18,6 +18,7 @@ mod groups;
 mod inputs_kept;
 mod khronos;
 mod library;
+mod lpe;
 mod meshes;
 mod optics;
 mod path;

@@ -198,6 +198,12 @@ pub(crate) struct RenderArgs {
     /// file (seed.normal.png ...); with .exr, all go into the one file as layers.
     #[arg(long, value_name = "NAMES", value_delimiter = ',', value_parser = parse_aov)]
     pub(crate) aov: Vec<Vec<Aov>>,
+    /// A light path expression to render beside the picture (path tracer; repeatable):
+    /// NAME=EXPR, such as direct=C<RD>L, or a preset: emission, direct, indirect, specular,
+    /// caustics, per-light. With a .png output each goes to its own file (seed.direct.png);
+    /// with .exr, into the one file as layers (direct.R ...). See docs/lpe.md.
+    #[arg(long, value_name = "NAME=EXPR", value_parser = snell::lpe::request)]
+    pub(crate) lpe: Vec<snell::lpe::Request>,
     /// Save progress to FILE while rendering (and when interrupted), so the render can be
     /// continued with --resume FILE. Removed once the render is complete.
     #[arg(long, value_name = "FILE")]

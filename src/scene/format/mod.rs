@@ -129,6 +129,24 @@ pub struct ImageDef {
     /// images, filtered checker and stripes), as they should be; `false` reads them at a
     /// point, which aliases (moire on a far checker), to show the difference.
     pub filter_textures: bool,
+    /// Light path expressions rendered beside the picture (path tracer): each an image of
+    /// the light that came by the paths it matches (docs/lpe.md).
+    pub lpe: Vec<LpeDef>,
+}
+
+/// `[[image.lpe]]`: an image of the light that came by the paths an expression matches,
+/// written beside the picture (a layer `NAME.R`, `NAME.G`, `NAME.B` of an EXR, or
+/// `x.NAME.png`). Give `name` and `expr`, or `preset`.
+#[derive(Debug, Deserialize, JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct LpeDef {
+    /// The image's name: letters, digits, `_` and `-`, starting with a letter.
+    pub name: Option<String>,
+    /// The expression, in OSL's syntax, from the camera to the light: `C<RD>L`.
+    pub expr: Option<String>,
+    /// A preset instead of `name` and `expr`: `emission`, `direct`, `indirect`,
+    /// `specular`, `caustics` or `per-light`.
+    pub preset: Option<String>,
 }
 
 impl Default for ImageDef {
@@ -144,6 +162,7 @@ impl Default for ImageDef {
             exposure: 0.0,
             tonemap: crate::output::tone::ToneCurve::Clamp,
             filter_textures: true,
+            lpe: vec![],
         }
     }
 }
@@ -320,6 +339,17 @@ pub enum LightDef {
         #[serde(default = "default_soft_edge")]
         soft_edge: f32,
     },
+}
+
+impl LightDef {
+    /// The light's `name`, if given.
+    pub fn name(&self) -> &Option<String> {
+        match self {
+            LightDef::Point { name, .. }
+            | LightDef::Directional { name, .. }
+            | LightDef::Spot { name, .. } => name,
+        }
+    }
 }
 
 /// `transform = { ... }`: scale, then rotate (x, y, z, degrees), then translate.

@@ -286,15 +286,7 @@ impl Builder<'_> {
         default: Interpolation,
         t: f32,
     ) {
-        let names: Vec<Option<String>> = def
-            .lights
-            .iter()
-            .map(|l| match l {
-                LightDef::Point { name, .. }
-                | LightDef::Directional { name, .. }
-                | LightDef::Spot { name, .. } => name.clone(),
-            })
-            .collect();
+        let names: Vec<Option<String>> = def.lights.iter().map(|l| l.name().clone()).collect();
         for (target, keyed) in by_target(keys, path, |k| &k.light) {
             let Some(i) = self.target(&names, &target, &keyed[0].1.key("light"), "light") else {
                 continue;

@@ -87,6 +87,18 @@ impl Builder<'_> {
             .enumerate()
             .map(|(i, l)| self.light(l, &root.key("lights").index(i)))
             .collect();
+        // The point, spot and directional lights' names: given, or kind and index.
+        let mut light_names: Vec<String> = def
+            .lights
+            .iter()
+            .zip(&lights)
+            .enumerate()
+            .map(|(i, (d, l))| {
+                d.name()
+                    .clone()
+                    .unwrap_or_else(|| format!("{} #{i}", l.kind_name()))
+            })
+            .collect();
 
         let mut used_materials = vec![false; materials.len()];
         let user_materials = materials.len();
@@ -129,7 +141,10 @@ impl Builder<'_> {
             if let ObjectDef::Mesh(m) = o
                 && m.lights == Some(true)
             {
-                lights.extend(self.gltf_object_lights(m, &path));
+                let added = self.gltf_object_lights(m, &path);
+                let object = m.name.clone().unwrap_or_else(|| format!("mesh #{i}"));
+                light_names.extend((0..added.len()).map(|j| format!("{object} light #{j}")));
+                lights.extend(added);
             }
         }
         for (name, used) in def.groups.keys().zip(&used_groups) {
@@ -290,6 +305,8 @@ impl Builder<'_> {
             texture_names,
             material_names,
             lights,
+            light_names,
+            lpe: vec![],
             area_light_of,
             light_sampler,
             warnings: std::mem::take(&mut self.warnings),
@@ -309,6 +326,7 @@ impl Builder<'_> {
             frame: 0,
         };
         scene.warnings.extend(scene.lighting_warning());
+        scene.lpe = self.light_path_expressions(&def.image.lpe, &root.key("image"), &scene);
         scene
     }
 }

@@ -20,6 +20,7 @@ mod emitters;
 mod environment;
 mod group;
 mod light;
+mod lpe;
 mod material;
 mod object;
 mod parse;

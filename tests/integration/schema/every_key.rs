@@ -18,6 +18,7 @@ seed = 7
 exposure = -0.5
 tonemap = "aces"
 filter_textures = true
+lpe = [{ name = "walls", expr = "C<RD>L", preset = "direct" }]
 [integrator]
 type = "path"
 sampler = "independent"

@@ -13,6 +13,7 @@ use snell::output::OutputError;
 use snell::render::to_files::Outputs;
 
 mod frames;
+mod lpe;
 mod outputs;
 mod passes;
 mod report;
@@ -154,8 +155,19 @@ fn render_job(
             Some("render with --integrator path (or [integrator] type = \"path\")"),
         );
     }
+    let lpe = match lpe::prepare(args, &scene, &aovs) {
+        Ok(l) => l,
+        Err(code) => return code,
+    };
+    let layer_names: Vec<String> = lpe
+        .iter()
+        .flat_map(|set| set.named.iter().map(|n| n.name.clone()))
+        .collect();
     // Separate PNGs are reserved now, like the picture, so a bad path fails before rendering.
-    if let Err(e) = pending.add_views(&aovs) {
+    if let Err(e) = pending
+        .add_views(&aovs)
+        .and_then(|()| pending.add_layers(&layer_names))
+    {
         eprintln!("error: {e}");
         return ExitCode::from(1);
     }
@@ -211,7 +223,9 @@ fn render_job(
         && resumed
             .as_ref()
             .is_none_or(|c| c.film.is_some() || c.tiles.is_empty());
-    let outcome = if by_passes {
+    let outcome = if let Some(set) = &lpe {
+        lpe::render_with_lpe(&run, set)
+    } else if by_passes {
         passes::render_passes(&run, resumed.and_then(|c| c.film), args.time)
     } else {
         if args.time.is_some() && !args.quiet {
@@ -231,6 +245,8 @@ fn render_job(
     };
     bar.finish_and_clear();
     let elapsed = start.elapsed().as_secs_f64();
+    let mut outcome = outcome;
+    pending.set_layer_images(std::mem::take(&mut outcome.layers));
     if !outcome.complete {
         // An unfinished picture never replaces a finished one: it goes beside it.
         pending.make_partial();
@@ -282,6 +298,11 @@ fn render_job(
             &out_path, a,
         )));
     }
+    for name in &layer_names {
+        let _ = std::fs::remove_file(snell::output::partial_path(&Outputs::layer_path(
+            &out_path, name,
+        )));
+    }
     if let Some(path) = &checkpoint_path
         && std::fs::remove_file(path).is_ok()
         && !args.quiet
@@ -328,6 +349,8 @@ pub(crate) struct Outcome {
     pub(crate) error: Option<f32>,
     /// The film of sums, kept for the variance view when it is asked for.
     pub(crate) film: Option<snell::film::Film>,
+    /// The light path expressions' images, in order (none without expressions).
+    pub(crate) layers: Vec<snell::film::Image>,
 }
 
 /// What a render is, for its checkpoints.

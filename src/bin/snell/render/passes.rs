@@ -134,6 +134,7 @@ pub(crate) fn render_passes(
         checkpoint,
         error,
         film: kept,
+        layers: vec![],
     })
 }
 

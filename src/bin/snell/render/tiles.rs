@@ -62,5 +62,6 @@ pub(super) fn render_tiles(
         bad_samples: rendered.bad_samples,
         error: None,
         film: None,
+        layers: vec![],
     })
 }
