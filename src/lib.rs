@@ -17,7 +17,7 @@
 //!     None,                // no checkpoint to resume
 //! )?;
 //! let progress = |p: snell::render::to_files::JobProgress| eprint!("\r{} of {}", p.done, p.total);
-//! let options = RunOptions { threads: None, progress: &progress, cancel: None, time: None };
+//! let options = RunOptions { threads: None, progress: &progress, cancel: None, time: None, lpe: &[] };
 //! render_to_files(&job, Path::new("seed.png"), &[], &options)?;
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```

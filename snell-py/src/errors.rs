@@ -33,6 +33,11 @@ pub fn io(e: impl std::fmt::Display) -> PyErr {
     PyOSError::new_err(e.to_string())
 }
 
+/// Render settings that cannot be used, with what to do instead.
+pub fn settings(message: impl Into<String>) -> PyErr {
+    SettingsError::new_err(message.into())
+}
+
 /// A bad argument.
 pub fn value(message: impl Into<String>) -> PyErr {
     PyValueError::new_err(message.into())

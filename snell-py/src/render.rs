@@ -62,9 +62,10 @@ fn job(
 
 /// Renders `scene` and returns a dict: `image` (float32, height x width x 3, linear),
 /// `complete`, `spp` (samples per pixel taken), `interrupted` (Ctrl-C stopped it),
-/// `aovs` (name to float32 array, height x width x channels), `seconds`, `rays`.
+/// `aovs` (name to float32 array, height x width x channels), `lpe` (each light path
+/// expression's name to its float32 image: the scene's own and `lpe`'s), `seconds`, `rays`.
 #[pyfunction]
-#[pyo3(signature = (scene, spp=None, seed=None, width=None, height=None, integrator=None, time=None, threads=None, aovs=None, progress=None))]
+#[pyo3(signature = (scene, spp=None, seed=None, width=None, height=None, integrator=None, time=None, threads=None, aovs=None, progress=None, lpe=None))]
 #[allow(clippy::too_many_arguments)]
 pub fn render<'py>(
     py: Python<'py>,
@@ -78,6 +79,7 @@ pub fn render<'py>(
     threads: Option<usize>,
     aovs: Option<Vec<String>>,
     progress: Option<Py<PyAny>>,
+    lpe: Option<Vec<String>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let job = job(scene, spp, seed, width, height, integrator)?;
     let views = aovs
@@ -93,6 +95,16 @@ pub fn render<'py>(
             })
         })
         .collect::<PyResult<Vec<Aov>>>()?;
+    let requests = lpe
+        .unwrap_or_default()
+        .iter()
+        .map(|a| snell::lpe::request(a).map_err(errors::settings))
+        .collect::<PyResult<Vec<_>>>()?;
+    // Checked here, before the render, as `snell render` checks its flags.
+    let taken: Vec<&str> = views.iter().map(|a| a.name()).collect();
+    if let Err(e) = snell::lpe::for_render(&job.scene, &requests, &taken) {
+        return Err(errors::settings(format!("{e} (help: {})", e.help())));
+    }
     let s = &job.scene.settings;
     if views.contains(&Aov::Variance) && s.integrator.kind != IntegratorKind::Path {
         return Err(errors::value(
@@ -112,7 +124,13 @@ pub fn render<'py>(
     }
     let total = s.width as u64 * s.height as u64 * s.spp as u64;
     let start = Instant::now();
-    let (finished, stopped_by) = run_waiting(py, &job, threads, time, total, progress.as_ref());
+    let run = Run {
+        job: &job,
+        threads,
+        time,
+        lpe: &requests,
+    };
+    let (finished, stopped_by) = run_waiting(py, &run, total, progress.as_ref());
     let finished = finished?;
     let interrupted = match stopped_by {
         Some(e) if e.is_instance_of::<PyKeyboardInterrupt>(py) => true,
@@ -153,7 +171,22 @@ pub fn render<'py>(
         }
     }
     out.set_item("aovs", views_out)?;
+    let layers = PyDict::new(py);
+    for (name, img) in &finished.layers {
+        layers.set_item(name, image_array(py, img))?;
+    }
+    out.set_item("lpe", layers)?;
     Ok(out)
+}
+
+/// What a render runs: the job, its threads, its time limit and its extra light path
+/// expressions.
+#[derive(Clone, Copy)]
+struct Run<'a> {
+    job: &'a RenderJob,
+    threads: Option<usize>,
+    time: Option<Duration>,
+    lpe: &'a [snell::lpe::Request],
 }
 
 /// Runs `job` on other threads while this one, every [`POLL`], takes the interpreter's
@@ -161,12 +194,16 @@ pub fn render<'py>(
 /// the callback's) stops the render, keeping what is done, and is returned beside it.
 fn run_waiting(
     py: Python<'_>,
-    job: &RenderJob,
-    threads: Option<usize>,
-    time: Option<Duration>,
+    run_: &Run,
     total: u64,
     progress: Option<&Py<PyAny>>,
 ) -> (PyResult<Finished>, Option<PyErr>) {
+    let Run {
+        job,
+        threads,
+        time,
+        lpe,
+    } = *run_;
     let cancel = AtomicBool::new(false);
     let done = AtomicU64::new(0);
     let mut stopped_by: Option<PyErr> = None;
@@ -192,6 +229,7 @@ fn run_waiting(
                     progress: &on_progress,
                     cancel: Some(&cancel),
                     time,
+                    lpe,
                 };
                 let r = run(&job.scene, &options);
                 drop(tx);

@@ -135,3 +135,40 @@ def test_progress_true_shows_a_bar_that_ends_full(repo, capsys):
     err = capsys.readouterr().err
     # tqdm's bar where tqdm is installed, else snell's own line; either ends at 100 %.
     assert "100%" in err.replace(" ", ""), err
+
+
+def test_light_path_expressions_come_back_by_name_and_add_up(repo, run_cli, tmp_path):
+    args = dict(width=32, height=24, spp=4)
+    out = snell.render(repo / "scenes/cornell.toml", **args,
+                       lpe=["emission", "direct", "indirect", "specular", "walls=C<RD'red'>.*L"])
+    assert set(out) == {"image", "emission", "direct", "indirect", "specular", "walls"}
+    parts = out["emission"] + out["direct"] + out["indirect"] + out["specular"]
+    assert np.allclose(parts, out["image"], rtol=1e-5, atol=1e-6)
+    assert out["walls"].max() > 0 and isinstance(out["walls"], snell.Image)
+    # The same pixels as the command line's EXR layers, and the picture unchanged.
+    exr = tmp_path / "c.exr"
+    run_cli("render", repo / "scenes/cornell.toml", "-o", exr, "--quiet", "--width", 32,
+            "--height", 24, "--spp", 4, "--lpe", "direct")
+    assert np.array_equal(out["image"], snell.read(exr))
+    assert np.array_equal(out["image"], snell.render(repo / "scenes/cornell.toml", **args))
+
+
+@pytest.mark.parametrize(
+    "lpe, words",
+    [
+        (["x=C<RX>L"], "column 4: `X` is not an event"),
+        (["x=LC"], "a path starts at the camera"),
+        (["nope"], "neither NAME=EXPR nor a preset"),
+        (["a=CL", "a=CDL"], "two light path expressions are named `a`"),
+    ],
+)
+def test_a_bad_expression_is_a_settings_error(repo, lpe, words):
+    with pytest.raises(snell.SettingsError, match=None) as e:
+        snell.render(repo / "scenes/cornell.toml", width=8, height=8, spp=1, lpe=lpe)
+    assert words in str(e.value)
+
+
+def test_whitted_refuses_expressions(repo):
+    with pytest.raises(ValueError) as e:
+        snell.render(repo / "scenes/seed.toml", width=8, height=8, spp=1, lpe=["direct"])
+    assert "path tracer" in str(e.value)

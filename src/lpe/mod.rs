@@ -216,6 +216,105 @@ fn layer_name(source: &str) -> String {
     }
 }
 
+/// Why a render's expressions cannot be rendered.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum RenderLpeError {
+    /// The scene is rendered by Whitted's ray tracer.
+    Whitted,
+    /// Two expressions have one name.
+    Duplicate(String),
+    /// An expression has the name of another image of the render (a debug view).
+    Taken(String),
+    /// An expression has a mistake.
+    Expr {
+        /// The expression.
+        named: Named,
+        /// Its mistake.
+        error: LpeError,
+    },
+}
+
+impl RenderLpeError {
+    /// How to put it right.
+    pub fn help(&self) -> String {
+        match self {
+            RenderLpeError::Whitted => {
+                "render with the path tracer (--integrator path, [integrator] type = \"path\")"
+                    .into()
+            }
+            RenderLpeError::Duplicate(_) => {
+                "give each expression a name of its own (a per-light image is named after its light)"
+                    .into()
+            }
+            RenderLpeError::Taken(_) => "name the expression otherwise".into(),
+            RenderLpeError::Expr { error, .. } => error.help.clone(),
+        }
+    }
+}
+
+impl std::fmt::Display for RenderLpeError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            RenderLpeError::Whitted => f.write_str(
+                "light path expressions follow the path tracer's paths, and this render is Whitted's",
+            ),
+            RenderLpeError::Duplicate(n) => write!(f, "two light path expressions are named `{n}`"),
+            RenderLpeError::Taken(n) => write!(
+                f,
+                "the light path expression `{n}` has the name of a debug view of the render"
+            ),
+            RenderLpeError::Expr { named, error } => write!(
+                f,
+                "light path expression `{}` = `{}`: {error}",
+                named.name, named.expr
+            ),
+        }
+    }
+}
+
+impl std::error::Error for RenderLpeError {}
+
+/// The expressions a render of `scene` writes, made ready for it: the scene's own
+/// (`[[image.lpe]]`), then `extra` (the caller's: one named like the scene's replaces it);
+/// `None` where there are none. `taken` are the names of the render's other images (its
+/// debug views), which an expression may not have.
+pub fn for_render(
+    scene: &Scene,
+    extra: &[Request],
+    taken: &[&str],
+) -> Result<Option<LpeSet>, RenderLpeError> {
+    let mut all = expand(&scene.lpe, scene);
+    let mut given: Vec<String> = vec![];
+    for n in expand(extra, scene) {
+        if given.contains(&n.name) {
+            return Err(RenderLpeError::Duplicate(n.name));
+        }
+        given.push(n.name.clone());
+        all.retain(|m| m.name != n.name);
+        all.push(n);
+    }
+    if all.is_empty() {
+        return Ok(None);
+    }
+    if scene.settings.integrator.kind != crate::scene::IntegratorKind::Path {
+        return Err(RenderLpeError::Whitted);
+    }
+    for (i, n) in all.iter().enumerate() {
+        if all[..i].iter().any(|m| m.name == n.name) {
+            return Err(RenderLpeError::Duplicate(n.name.clone()));
+        }
+        if taken.contains(&n.name.as_str()) {
+            return Err(RenderLpeError::Taken(n.name.clone()));
+        }
+    }
+    LpeSet::new(scene, &all)
+        .map(Some)
+        .map_err(|e| RenderLpeError::Expr {
+            named: all[e.index.min(all.len() - 1)].clone(),
+            error: e.error,
+        })
+}
+
 /// Expressions made ready for one scene: its events numbered, each expression's table.
 #[derive(Clone, Debug)]
 pub struct LpeSet {

@@ -6,6 +6,7 @@
 //! before the render starts (a bad path fails before any work) and written atomically; an
 //! unfinished picture goes beside the old one (`x.partial.png`), never over it.
 
+use super::lpe::{LpeRenderError, render_lpe};
 use super::progressive::{Ended, PassEvent, SampleCount, Until, film_samples, render_progressive};
 use super::{BadSamples, PassError, RenderError, RenderOptions, render_aovs, render_with};
 use crate::Scene;
@@ -13,6 +14,7 @@ use crate::film::{Film, Image};
 use crate::integrator::aov::Aov;
 use crate::integrator::{self, RayStats};
 use crate::job::RenderJob;
+use crate::lpe::{self, RenderLpeError, Request};
 use crate::output::{ExrLayer, OutputError, OutputFormat, PendingOutput, encode_exr_layers};
 use std::path::{Path, PathBuf};
 use std::sync::atomic::AtomicBool;
@@ -39,6 +41,10 @@ pub struct RunOptions<'a> {
     pub cancel: Option<&'a AtomicBool>,
     /// For the path tracer: stop after the pass that spends this much time.
     pub time: Option<Duration>,
+    /// Light path expressions to render beside the picture, besides the scene's own
+    /// (`[[image.lpe]]`; one named like the scene's replaces it). With any, the path
+    /// tracer takes every sample of each pixel at once, and `time` is not read.
+    pub lpe: &'a [Request],
 }
 
 /// What a render came to.
@@ -57,6 +63,8 @@ pub struct Finished {
     pub rays: RayStats,
     /// Samples that came out NaN or infinite (left out of their pixels).
     pub bad_samples: BadSamples,
+    /// Each light path expression's name and image (linear), in order.
+    pub layers: Vec<(String, Image)>,
 }
 
 /// Why a job could not be rendered to its files.
@@ -74,6 +82,9 @@ pub enum RunError {
     /// A debug view this render cannot give.
     #[error("{0}")]
     View(String),
+    /// Light path expressions this render cannot give.
+    #[error("{error} (help: {help})", help = .0.help(), error = .0)]
+    Lpe(#[from] RenderLpeError),
 }
 
 /// Renders `scene` as its settings say (see the module's doc).
@@ -82,6 +93,38 @@ pub fn run(scene: &Scene, options: &RunOptions) -> Result<Finished, RunError> {
     let integrator = integrator::chosen(s.integrator.kind);
     let pixels = s.width as u64 * s.height as u64;
     let total = pixels * s.spp as u64;
+    if let Some(set) = lpe::for_render(scene, options.lpe, &[])? {
+        let progress = |n: u64| {
+            (options.progress)(JobProgress {
+                done: n * s.spp as u64,
+                total,
+            })
+        };
+        let render = RenderOptions {
+            threads: options.threads,
+            progress: &progress,
+            cancel: options.cancel,
+            region: None,
+        };
+        let r = render_lpe(scene, &set, &render).map_err(|e| match e {
+            LpeRenderError::Render(e) => RunError::Render(e),
+            LpeRenderError::NotPathTracer => RunError::Lpe(RenderLpeError::Whitted),
+        })?;
+        return Ok(Finished {
+            complete: r.rendered.complete(),
+            image: r.rendered.image,
+            film: None,
+            spp: s.spp,
+            rays: r.rendered.rays,
+            bad_samples: r.rendered.bad_samples,
+            layers: set
+                .named
+                .iter()
+                .map(|n| n.name.clone())
+                .zip(r.layers)
+                .collect(),
+        });
+    }
     if !integrator.uses_sampler() {
         let progress = |n: u64| {
             (options.progress)(JobProgress {
@@ -103,6 +146,7 @@ pub fn run(scene: &Scene, options: &RunOptions) -> Result<Finished, RunError> {
             spp: s.spp,
             rays: r.rays,
             bad_samples: r.bad_samples,
+            layers: vec![],
         });
     }
     let count = SampleCount::default();
@@ -140,6 +184,7 @@ pub fn run(scene: &Scene, options: &RunOptions) -> Result<Finished, RunError> {
         film: Some(film),
         rays: done.rays,
         bad_samples: done.bad_samples,
+        layers: vec![],
     })
 }
 
@@ -307,8 +352,9 @@ impl Outputs {
     }
 }
 
-/// Renders `job` to `out` (PNG or EXR, by its extension) with the debug views `views`: the
-/// files reserved first, the render run ([`run`]), then the files written, to their partial
+/// Renders `job` to `out` (PNG or EXR, by its extension) with the debug views `views` and
+/// the scene's light path expressions and `options.lpe`'s (beside a PNG, or as layers of the
+/// EXR): the files reserved first, the render run ([`run`]), then the files written, to their partial
 /// names if the render was cancelled. The variance view is the path tracer's only.
 pub fn render_to_files(
     job: &RenderJob,
@@ -323,8 +369,14 @@ pub fn render_to_files(
             "the variance view is the path tracer's: Whitted's samples are fixed strata".into(),
         ));
     }
+    let taken: Vec<&str> = views.iter().map(|a| a.name()).collect();
+    let names: Vec<String> = lpe::for_render(scene, options.lpe, &taken)?
+        .map(|set| set.named.into_iter().map(|n| n.name).collect())
+        .unwrap_or_default();
     let mut outputs = Outputs::reserve(out, views)?;
+    outputs.add_layers(&names)?;
     let finished = run(scene, options)?;
+    outputs.set_layer_images(finished.layers.iter().map(|(_, i)| i.clone()).collect());
     if !finished.complete {
         outputs.make_partial();
     }

@@ -47,6 +47,7 @@ fn the_library_writes_what_the_command_line_writes() {
             progress: &progress,
             cancel: None,
             time: None,
+            lpe: &[],
         };
         let views = [Aov::Normal, Aov::Depth];
         let done = render_to_files(&job, &ours, &views, &options).unwrap();
@@ -121,6 +122,7 @@ fn a_cancelled_render_keeps_the_old_picture() {
         progress: &|_| {},
         cancel: Some(&cancel),
         time: None,
+        lpe: &[],
     };
     let done = render_to_files(&job, &out, &[], &options).unwrap();
     assert!(!done.complete);
@@ -131,4 +133,52 @@ fn a_cancelled_render_keeps_the_old_picture() {
     let refused = render_to_files(&whitted, &dir.join("s.png"), &[Aov::Variance], &options);
     assert!(refused.unwrap_err().to_string().contains("variance"));
     assert!(!dir.join("s.png").exists());
+}
+
+/// A light path expression through the library's one call: its PNG beside the picture, the
+/// command line's bytes; a Whitted scene's expression is an error before any file.
+#[test]
+fn render_to_files_writes_light_path_expressions_as_the_command_line_does() {
+    use snell::lpe::{Preset, Request};
+    let dir = scratch("library-lpe");
+    let overrides = Overrides {
+        width: Some(24),
+        height: Some(20),
+        spp: Some(4),
+        ..Overrides::default()
+    };
+    let job = prepared("scenes/cornell.toml", &overrides);
+    let lpe = [Request::Preset(Preset::Direct)];
+    let options = RunOptions {
+        threads: Some(2),
+        progress: &|_| {},
+        cancel: None,
+        time: None,
+        lpe: &lpe,
+    };
+    let done = render_to_files(&job, &dir.join("lib.png"), &[], &options).unwrap();
+    assert!(done.complete);
+    assert_eq!(done.layers.len(), 1);
+    assert_eq!(done.layers[0].0, "direct");
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_snell"))
+        .args(["render", repo("scenes/cornell.toml").to_str().unwrap()])
+        .args([
+            "-o", "cli.png", "--width", "24", "--height", "20", "--spp", "4", "-q",
+        ])
+        .args(["--lpe", "direct"])
+        .current_dir(&dir)
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(0));
+    for (ours, theirs) in [("lib.png", "cli.png"), ("lib.direct.png", "cli.direct.png")] {
+        assert_eq!(
+            std::fs::read(dir.join(ours)).unwrap(),
+            std::fs::read(dir.join(theirs)).unwrap(),
+            "{ours}"
+        );
+    }
+    let whitted = prepared("scenes/seed.toml", &overrides);
+    let err = render_to_files(&whitted, &dir.join("w.png"), &[], &options).unwrap_err();
+    assert!(err.to_string().contains("path tracer"), "{err}");
+    assert!(!dir.join("w.png").exists());
 }

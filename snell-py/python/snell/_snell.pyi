@@ -58,6 +58,7 @@ def render(
     threads: Optional[int] = None,
     aovs: Optional[List[str]] = None,
     progress: Optional[Callable[[int, int], Any]] = None,
+    lpe: Optional[List[str]] = None,
 ) -> Dict[str, Any]: ...
 def explain(
     scene: NativeScene, x: int, y: int, sample: Optional[int] = None, max_rays: int = 200

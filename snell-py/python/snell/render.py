@@ -72,6 +72,7 @@ def render(
     threads: Optional[int] = None,
     aovs: Optional[Iterable[str]] = None,
     progress: Progress = None,
+    lpe: Optional[Iterable[str]] = None,
 ) -> Union[Image, Dict[str, Any]]:
     """Renders `scene` (a `Scene` or a scene file's path) as `snell render` would, with the
     settings given here in place of the scene's: samples per pixel, seed, size, integrator
@@ -84,15 +85,24 @@ def render(
     `"object"`, `"material"`, `"bounces"`, `"variance"`), returns a dict of arrays: `"image"`
     and each view (height x width x its channels).
 
+    `lpe`: light path expressions (path tracer), each `"NAME=EXPR"` (`"walls=C<RD'red'>.*L"`)
+    or a preset (`"direct"`, `"indirect"`, `"specular"`, `"emission"`, `"caustics"`,
+    `"per-light"`); see docs/lpe.md. With them, or with a scene that lists its own
+    (`[[image.lpe]]`), the dict also holds each expression's `Image` by its name, made from the
+    picture's own samples (`emission`, `direct`, `indirect` and `specular` add up to it). A
+    mistake raises `SettingsError` (a `ValueError`) with its column, before rendering.
+
     `progress`: `True` for a bar (tqdm's where installed), or a function called with
     (samples done, samples in all) a few times a second. Ctrl-C stops the render and raises
     `Interrupted`, carrying the picture so far."""
     built = _scene(scene).build()
     views = list(aovs) if aovs is not None else []
+    expressions = list(lpe) if lpe is not None else []
     bar = _Bar() if progress is True else None
     callback = bar if bar is not None else (progress or None)
     try:
-        out = _snell.render(built, spp, seed, width, height, integrator, time, threads, views, callback)
+        out = _snell.render(built, spp, seed, width, height, integrator, time, threads, views,
+                            callback, expressions)
     finally:
         if bar is not None:
             bar.close()
@@ -101,10 +111,13 @@ def render(
                   complete=out["complete"])
     if out["interrupted"]:
         raise Interrupted(image)
-    if aovs is None:
+    if aovs is None and lpe is None and not out["lpe"]:
         return image
     result: Dict[str, Any] = {"image": image}
     result.update(out["aovs"])
+    for name, layer in out["lpe"].items():
+        result[name] = Image(layer, exposure=exposure, tonemap=tonemap, spp=out["spp"],
+                             complete=out["complete"])
     return result
 
 

@@ -6,7 +6,7 @@ use super::{Outcome, Run, STOP};
 use crate::args::RenderArgs;
 use crate::usage_error;
 use snell::integrator::aov::Aov;
-use snell::lpe::{self, LpeSet, Named};
+use snell::lpe::{self, LpeSet, RenderLpeError};
 use snell::render::RenderOptions;
 use snell::render::lpe::render_lpe;
 use std::process::ExitCode;
@@ -18,17 +18,22 @@ pub(super) fn prepare(
     scene: &snell::Scene,
     aovs: &[Aov],
 ) -> Result<Option<LpeSet>, ExitCode> {
-    let from_scene = lpe::expand(&scene.lpe, scene);
-    let from_args = lpe::expand(&args.lpe, scene);
-    if from_scene.is_empty() && from_args.is_empty() {
-        return Ok(None);
-    }
-    if scene.settings.integrator.kind != snell::scene::IntegratorKind::Path {
-        return Err(usage_error(
-            "light path expressions follow the path tracer's paths, and this render is Whitted's",
-            Some("render with --integrator path (or [integrator] type = \"path\")"),
-        ));
-    }
+    let taken: Vec<&str> = aovs.iter().map(|a| a.name()).collect();
+    let set = match lpe::for_render(scene, &args.lpe, &taken) {
+        Ok(None) => return Ok(None),
+        Ok(Some(set)) => set,
+        Err(e @ RenderLpeError::Expr { .. }) => {
+            eprintln!("error: {e}");
+            if let RenderLpeError::Expr { named, error } = &e {
+                // The expression again, with a mark under the column.
+                eprintln!("    {}", named.expr);
+                eprintln!("    {}^", " ".repeat(error.column.saturating_sub(1)));
+            }
+            eprintln!("  help: {}", e.help());
+            return Err(ExitCode::from(2));
+        }
+        Err(e) => return Err(usage_error(&e.to_string(), Some(&e.help()))),
+    };
     let other = [
         (args.region.is_some(), "--region"),
         (args.checkpoint.is_some(), "--checkpoint"),
@@ -41,51 +46,7 @@ pub(super) fn prepare(
             Some("render them without it"),
         ));
     }
-    let mut all: Vec<Named> = from_scene;
-    let mut given: Vec<String> = vec![];
-    for n in from_args {
-        if given.contains(&n.name) {
-            return Err(usage_error(
-                &format!("two light path expressions are named `{}`", n.name),
-                Some("give each --lpe a name of its own: NAME=EXPR"),
-            ));
-        }
-        given.push(n.name.clone());
-        // One given on the command line replaces the scene's of the same name.
-        all.retain(|m| m.name != n.name);
-        all.push(n);
-    }
-    let mut seen: Vec<&str> = vec![];
-    for n in &all {
-        if seen.contains(&n.name.as_str()) {
-            return Err(usage_error(
-                &format!("two light path expressions are named `{}`", n.name),
-                Some("rename one of them (a per-light image is named after its light)"),
-            ));
-        }
-        if aovs.iter().any(|a| a.name() == n.name) {
-            return Err(usage_error(
-                &format!(
-                    "the light path expression `{}` has the name of a debug view",
-                    n.name
-                ),
-                Some("name it otherwise: NAME=EXPR"),
-            ));
-        }
-        seen.push(&n.name);
-    }
-    LpeSet::new(scene, &all).map(Some).map_err(|e| {
-        let n = &all[e.index.min(all.len() - 1)];
-        eprintln!(
-            "error: light path expression `{}` = `{}`: {}",
-            n.name, n.expr, e.error
-        );
-        // The expression again, with a mark under the column.
-        eprintln!("    {}", n.expr);
-        eprintln!("    {}^", " ".repeat(e.error.column.saturating_sub(1)));
-        eprintln!("  help: {}", e.error.help);
-        ExitCode::from(2)
-    })
+    Ok(Some(set))
 }
 
 /// Renders `run`'s scene with the path tracer and `set`'s expressions beside it: every
