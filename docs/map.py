@@ -95,6 +95,7 @@ PAGE = {
  'picture.js': 'The picture and the status line: the newest frame (or debug view) shown, frames it could not keep up with skipped, the scene\'s exposure and curve followed in the controls, errors over the picture.',
  'explain.js': 'Pixels explained: the hover that names what is under the pointer, and a click\'s `/explain` answer shown as a tree, its hit points drawn over the picture.',
  'camera.js': 'Camera moves: a drag orbits, the wheel moves in and out, each sent to `/camera`; a press that does not move is a click to explain; the copy and reset buttons.',
+ 'paths.js': 'A clicked pixel\'s light by the kind of path that brought it (`/paths`): a bar of the kinds\' shares, and sampled paths of each kind drawn over views of the scene from above and the side, each vertex\'s numbers on hover.',
  'style.css': 'The page\'s look (and the lab page\'s).',
  'lab.html': 'The sampling lab\'s page (`/lab`, linked from the preview): a material\'s form, the test\'s answer, and three canvases for the histograms.',
  'lab.js': 'The sampling lab\'s script: sends the form to `/lab/bsdf` and draws the samples\' histogram, the density\'s and their difference; a link with the form\'s values runs it at once.',

@@ -49,6 +49,41 @@ impl PathRecorder for NoPathRecord {
     fn end(&mut self, _: PathEnd) {}
 }
 
+/// Two recorders at once: the path's records to one and its events to the other (a path
+/// drawn with the kind of light it carries).
+impl<A: PathRecorder, B: PathRecorder> PathRecorder for (A, B) {
+    const ACTIVE: bool = A::ACTIVE || B::ACTIVE;
+    const EVENTS: bool = A::EVENTS || B::EVENTS;
+    fn vertex(&mut self, v: VertexRecord) {
+        if B::ACTIVE {
+            self.1.vertex(v.clone());
+        }
+        self.0.vertex(v);
+    }
+    fn end(&mut self, end: PathEnd) {
+        if B::ACTIVE {
+            self.1.end(end.clone());
+        }
+        self.0.end(end);
+    }
+    fn scattered(&mut self, lobe: Lobe, material: usize) {
+        self.0.scattered(lobe, material);
+        self.1.scattered(lobe, material);
+    }
+    fn reached(&mut self, c: Color, from: LightFrom) {
+        self.0.reached(c, from);
+        self.1.reached(c, from);
+    }
+    fn sampled(&mut self, c: Color, diffuse: Color, transmit: bool, material: usize, light: usize) {
+        self.0.sampled(c, diffuse, transmit, material, light);
+        self.1.sampled(c, diffuse, transmit, material, light);
+    }
+    fn finished(&mut self, l: Color, clamped: Color) {
+        self.0.finished(l, clamped);
+        self.1.finished(l, clamped);
+    }
+}
+
 /// A whole path: what `explain` prints.
 #[derive(Clone, Debug, Default, PartialEq, Serialize)]
 pub struct PathRecord {

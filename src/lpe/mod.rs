@@ -9,6 +9,7 @@
 mod alphabet;
 mod automaton;
 mod parse;
+pub mod pixel;
 mod tracker;
 
 pub use alphabet::{Alphabet, Source, SourceKind, Symbol};

@@ -51,6 +51,17 @@ pub fn render_lpe(
     set: &LpeSet,
     options: &RenderOptions,
 ) -> Result<LpeRendered, LpeRenderError> {
+    render_lpe_samples(scene, set, scene.settings.spp, options)
+}
+
+/// [`render_lpe`] with samples `0..spp` of each pixel (the first of the render's, for a
+/// quicker look).
+pub fn render_lpe_samples(
+    scene: &Scene,
+    set: &LpeSet,
+    spp: u32,
+    options: &RenderOptions,
+) -> Result<LpeRendered, LpeRenderError> {
     let s = &scene.settings;
     if s.integrator.kind != IntegratorKind::Path {
         return Err(LpeRenderError::NotPathTracer);
@@ -75,7 +86,7 @@ pub fn render_lpe(
             job.add_samples_with(
                 x,
                 y,
-                0..s.spp,
+                0..spp,
                 (&mut pixel, &mut tile.rays, &mut tile.bad),
                 |ray, sampler, rays| {
                     let mut tracker = Tracker::new(set);

@@ -274,21 +274,25 @@ fn browser_shows_follows_and_explains() {
         "const r = document.getElementById('frame').getBoundingClientRect(); return [r.width, r.height]",
     );
     let (w, h) = (rect[0].as_f64().unwrap(), rect[1].as_f64().unwrap());
-    // Offsets from the element's centre, in CSS pixels.
-    let (dx, dy) = ((256.5 / 512.0 - 0.5) * w, (380.5 / 512.0 - 0.5) * h);
-    driver.session_call(
-        "POST",
-        "/actions",
-        Some(json!({ "actions": [{
-            "type": "pointer", "id": "mouse", "parameters": { "pointerType": "mouse" },
-            "actions": [
-                { "type": "pointerMove", "origin": { ELEMENT: img[ELEMENT] }, "x": dx.round() as i64, "y": dy.round() as i64 },
-                { "type": "pause", "duration": 300 },
-                { "type": "pointerDown", "button": 0 },
-                { "type": "pointerUp", "button": 0 },
-            ],
-        }]})),
-    );
+    // A click on pixel (x, y) of the 512 x 512 picture: offsets from the element's centre,
+    // in CSS pixels.
+    let click = |x: f64, y: f64| {
+        let (dx, dy) = (((x + 0.5) / 512.0 - 0.5) * w, ((y + 0.5) / 512.0 - 0.5) * h);
+        driver.session_call(
+            "POST",
+            "/actions",
+            Some(json!({ "actions": [{
+                "type": "pointer", "id": "mouse", "parameters": { "pointerType": "mouse" },
+                "actions": [
+                    { "type": "pointerMove", "origin": { ELEMENT: img[ELEMENT] }, "x": dx.round() as i64, "y": dy.round() as i64 },
+                    { "type": "pause", "duration": 300 },
+                    { "type": "pointerDown", "button": 0 },
+                    { "type": "pointerUp", "button": 0 },
+                ],
+            }]})),
+        );
+    };
+    click(256.0, 380.0);
     let tree = driver.wait(
         60,
         "the explain tree",
@@ -302,6 +306,69 @@ fn browser_shows_follows_and_explains() {
     assert!(tree.contains("refraction ray"), "{tree}");
     let marks = driver.run("return document.querySelectorAll('#overlay .hit').length");
     assert!(marks.as_u64().unwrap() >= 2, "hit points drawn: {marks}");
+    // Its light by kind of path: the floor seen through the diamond there is a black
+    // square, and the page says no path brought light.
+    let said = driver.wait(
+        60,
+        "the pixel's paths",
+        "const p = document.getElementById('paths'); return p.dataset.pixel ? [p.dataset.pixel, p.textContent] : null",
+    );
+    assert!(
+        said[1].as_str().unwrap().contains("No path brought"),
+        "{said}"
+    );
+    // The red sphere's: a bar whose shares add up to 1, most of it direct diffuse light, and
+    // sampled paths drawn from above and from the side, each vertex saying its numbers on
+    // hover.
+    click(380.0, 420.0);
+    driver.wait(
+        60,
+        "the red sphere's paths",
+        &format!(
+            "const p = document.getElementById('paths').dataset.pixel; return p && p !== '{}' && document.querySelector('.paths-segment') ? p : null",
+            said[0].as_str().unwrap()
+        ),
+    );
+    let shares = driver.run(
+        "return [...document.querySelectorAll('.paths-segment')].map((s) => [s.dataset.kind, Number(s.dataset.share)])",
+    );
+    let shares = shares.as_array().unwrap();
+    let total: f64 = shares.iter().map(|s| s[1].as_f64().unwrap()).sum();
+    assert!((total - 1.0).abs() < 0.01, "{shares:?}");
+    let direct = shares
+        .iter()
+        .find(|s| s[0] == "direct, diffuse")
+        .map_or(0.0, |s| s[1].as_f64().unwrap());
+    assert!(direct > 0.5, "{shares:?}");
+    let drawn = driver.run(
+        "return [document.querySelectorAll('.paths-view').length, document.querySelectorAll('.paths-path').length, [...document.querySelectorAll('.paths-vertex title')].map((t) => t.textContent)]",
+    );
+    assert_eq!(drawn[0], 2, "{drawn}");
+    assert!(drawn[1].as_u64().unwrap() >= 2, "{drawn}");
+    let hovers = drawn[2].as_array().unwrap();
+    assert!(!hovers.is_empty());
+    assert!(
+        hovers
+            .iter()
+            .all(|t| t.as_str().unwrap().contains("throughput")),
+        "{drawn}"
+    );
+    assert!(
+        hovers.iter().any(|t| t.as_str().unwrap().contains("pdf")),
+        "{drawn}"
+    );
+    // A light path view: the direct light alone, in place of the picture.
+    driver.run(
+        "const v = document.getElementById('view'); v.value = 'lpe:direct'; v.dispatchEvent(new Event('change')); return true",
+    );
+    driver.wait(
+        60,
+        "the direct light's view",
+        "const f = document.getElementById('frame'); return f.src.includes('/lpe/direct.png') && f.complete && f.naturalWidth > 0 ? f.src : null",
+    );
+    driver.run(
+        "const v = document.getElementById('view'); v.value = 'picture'; v.dispatchEvent(new Event('change')); return true",
+    );
     // The hover says what is under the pointer.
     driver.wait(
         30,

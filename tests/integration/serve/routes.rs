@@ -33,6 +33,7 @@ fn every_route_answers() {
         "state.js",
         "picture.js",
         "explain.js",
+        "paths.js",
         "camera.js",
     ];
     for (path, kind, needle) in [
@@ -40,6 +41,7 @@ fn every_route_answers() {
         ("/state.js", "text/javascript", "export const state"),
         ("/picture.js", "text/javascript", "/frame.jpg"),
         ("/explain.js", "text/javascript", "/explain?"),
+        ("/paths.js", "text/javascript", "/paths?"),
         ("/camera.js", "text/javascript", "'/camera'"),
         ("/style.css", "text/css", "#frame-box"),
     ] {
@@ -109,6 +111,47 @@ fn every_route_answers() {
         assert_eq!(&r.body[1..4], b"PNG", "{view}");
     }
     assert_eq!(get(p, "/view/colour.png").status, 404);
+    // The light path views (the path tracer's, though the preview is Whitted's), tone mapped
+    // as asked; the four that share out every path add up to something brighter than each.
+    let mut views = 0;
+    for name in ["emission", "direct", "indirect", "specular", "caustics"] {
+        let r = get(p, &format!("/lpe/{name}.png?g=1&exposure=1&tone=aces"));
+        assert_eq!(r.status, 200, "{name}: {}", r.text());
+        assert_eq!(r.header("content-type"), Some("image/png"));
+        let img = image::load_from_memory(&r.body).unwrap();
+        assert_eq!((img.width(), img.height()), (96, 96), "{name}");
+        views += 1;
+    }
+    assert_eq!(views, 5);
+    let mut refused = 0;
+    for (bad, code) in [
+        ("/lpe/per-light.png", 404),
+        ("/lpe/sideways.png", 404),
+        ("/lpe/direct", 404),
+        ("/lpe/direct.png?exposure=99", 400),
+        ("/lpe/direct.png?tone=sepia", 400),
+        ("/lpe/direct.png?expr=CL", 400),
+        ("/paths?x=96&y=0", 400),
+        ("/paths?x=1", 400),
+        ("/paths?x=1&y=2&samples=100000", 400),
+    ] {
+        assert_eq!(get(p, bad).status, code, "{bad}");
+        refused += 1;
+    }
+    assert_eq!(refused, 9);
+    // A pixel's light by kind of path: the red sphere's is mostly direct diffuse light, and
+    // the kinds' shares add up to 1.
+    let red = get(p, "/pick?x=71&y=79").json();
+    assert_eq!(red["object"], "red sphere");
+    let paths = get(p, "/paths?x=71&y=79");
+    assert_eq!(paths.status, 200, "{}", paths.text());
+    let doc = paths.json();
+    let kinds = doc["kinds"].as_array().unwrap();
+    let total: f64 = kinds.iter().map(|k| k["share"].as_f64().unwrap()).sum();
+    assert!((total - 1.0).abs() < 1e-3, "{doc}");
+    assert_eq!(kinds[1]["name"], "direct, diffuse");
+    assert!(kinds[1]["share"].as_f64().unwrap() > 0.5, "{doc}");
+    assert!(!doc["paths"].as_array().unwrap().is_empty());
     // The diamond sphere's pixel: a Whitted tree with a refraction in it, and its points
     // placed on the picture.
     let pick = get(p, "/pick?x=48&y=71").json();

@@ -30,6 +30,7 @@ const SCRIPT: &str = include_str!("page/app.js");
 const STATE: &str = include_str!("page/state.js");
 const PICTURE: &str = include_str!("page/picture.js");
 const EXPLAIN: &str = include_str!("page/explain.js");
+const PATHS: &str = include_str!("page/paths.js");
 const CAMERA: &str = include_str!("page/camera.js");
 const STYLE: &str = include_str!("page/style.css");
 /// The sampling lab's page and script.
@@ -65,6 +66,8 @@ pub(crate) struct Context {
     frame_cache: Mutex<Option<(FrameKey, Encoded)>>,
     /// The debug views of the render shown, by generation and view.
     view_cache: Mutex<Vec<((u64, Aov), Encoded)>>,
+    /// The light path views of the render shown, linear, by generation and preset.
+    pub(super) lpe_cache: Mutex<Vec<(LpeKey, Arc<snell::film::Image>)>>,
 }
 
 impl Context {
@@ -75,11 +78,15 @@ impl Context {
             streams: AtomicUsize::new(0),
             frame_cache: Mutex::new(None),
             view_cache: Mutex::new(vec![]),
+            lpe_cache: Mutex::new(vec![]),
         }
     }
 }
 
 type Ctx = State<Arc<Context>>;
+
+/// A light path view's key: the render's generation and the preset's name.
+pub(super) type LpeKey = (u64, String);
 
 /// The routes, behind the Host and Origin rules.
 pub(crate) fn router(ctx: Arc<Context>) -> Router {
@@ -89,6 +96,7 @@ pub(crate) fn router(ctx: Arc<Context>) -> Router {
         .route("/state.js", get(|| async { page(JS, STATE) }))
         .route("/picture.js", get(|| async { page(JS, PICTURE) }))
         .route("/explain.js", get(|| async { page(JS, EXPLAIN) }))
+        .route("/paths.js", get(|| async { page(JS, PATHS) }))
         .route("/camera.js", get(|| async { page(JS, CAMERA) }))
         .route("/style.css", get(|| async { page("text/css; charset=utf-8", STYLE) }))
         .route("/lab", get(|| async { page("text/html; charset=utf-8", LAB_PAGE) }))
@@ -99,6 +107,8 @@ pub(crate) fn router(ctx: Arc<Context>) -> Router {
         .route("/frame.jpg", get(frame))
         .route("/view/{file}", get(view))
         .route("/explain", get(explain))
+        .route("/lpe/{file}", get(super::paths::view))
+        .route("/paths", get(super::paths::pixel))
         .route("/pick", get(pick))
         .route("/camera", post(camera))
         .route(
@@ -216,7 +226,8 @@ struct FrameQuery {
 
 /// The query that names a pixel: `x=COLUMN&y=ROW`.
 #[derive(serde::Deserialize)]
-struct PixelQuery {
+#[serde(deny_unknown_fields)]
+pub(super) struct PixelQuery {
     x: u32,
     y: u32,
 }
@@ -402,7 +413,7 @@ async fn view(State(ctx): Ctx, Path(file): Path<String>) -> Response {
 
 /// The scene shown and the pixel a query names inside it (or the answer that says why
 /// not, boxed: a response is large).
-fn scene_and_pixel(
+pub(super) fn scene_and_pixel(
     ctx: &Context,
     q: Asked<PixelQuery>,
 ) -> Result<(Arc<snell::Scene>, u32, u32), Box<Response>> {

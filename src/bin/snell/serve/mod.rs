@@ -6,6 +6,7 @@
 
 mod http;
 mod lab;
+mod paths;
 mod preview;
 mod watch;
 

@@ -3,6 +3,7 @@
 // hit points drawn over the picture.
 
 import { $, img, overlay, SVG, state, fmt } from './state.js';
+import { explainPaths } from './paths.js';
 
 let hoverTimer = 0;
 
@@ -160,4 +161,5 @@ export async function explain(p) {
   tree(box, doc.tree || doc.path, doc.tree ? 'tree' : 'path', true);
   box.dataset.pixel = `${p[0]},${p[1]}`;
   draw(doc, p);
+  explainPaths(p);
 }

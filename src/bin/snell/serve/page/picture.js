@@ -12,6 +12,9 @@ function pictureUrl() {
   const view = $('view').value;
   const status = state.status;
   if (!status) return null;
+  if (view.startsWith('lpe:')) {
+    return `/lpe/${view.slice(4)}.png?g=${status.generation}&exposure=${$('exposure').value}&tone=${$('tone').value}`;
+  }
   if (view !== 'picture') return `/view/${view}.png?g=${status.generation}`;
   if (!status.frame) return null;
   return `/frame.jpg?id=${status.frame.id}&exposure=${$('exposure').value}&tone=${$('tone').value}`;
@@ -36,7 +39,16 @@ export function showPicture() {
     loading = false;
     if (pendingKey && pendingKey !== shownKey) showPicture();
   };
-  next.onerror = () => { loading = false; };
+  next.onerror = async () => {
+    loading = false;
+    // Say why (a light path view of a Whitted preview, for one).
+    const r = await fetch(url);
+    if (!r.ok) {
+      const error = $('error');
+      error.textContent = await r.text();
+      error.hidden = false;
+    }
+  };
   next.src = url;
 }
 
