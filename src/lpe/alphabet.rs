@@ -34,6 +34,8 @@ pub struct Source {
 
 /// The name of the environment as a source of light.
 pub const ENVIRONMENT: &str = "environment";
+/// The name of any other surface as a source of light.
+pub const OTHER: &str = "other surface";
 /// The name of the background as a source of light.
 pub const BACKGROUND: &str = "background";
 
@@ -66,30 +68,43 @@ impl Alphabet {
     /// `scene`'s events.
     pub fn new(scene: &Scene) -> Alphabet {
         let mut sources: Vec<Source> = vec![];
+        let mut index: std::collections::HashMap<(String, u8), u32> = Default::default();
         let mut source = |name: &str, kind: SourceKind| -> u32 {
-            match sources
-                .iter()
-                .position(|s| s.name == name && s.kind == kind)
-            {
-                Some(i) => i as u32,
-                None => {
+            *index
+                .entry((name.to_string(), kind as u8))
+                .or_insert_with(|| {
                     sources.push(Source {
                         name: name.to_string(),
                         kind,
                     });
                     (sources.len() - 1) as u32
-                }
-            }
+                })
         };
         let glows = |m: usize| scene.materials[m].emission.is_some();
+        // Every object a light is made of glows; any other object's surface, should a path
+        // find it glowing, counts as one source of its own (no object of the scenes snell
+        // builds does).
+        let lit: std::collections::HashSet<usize> = scene
+            .lights
+            .iter()
+            .filter_map(|l| match l {
+                Light::Area(a) => Some(a.object),
+                _ => None,
+            })
+            .collect();
+        let mut other = None;
         let source_of_object: Vec<u32> = scene
             .objects
             .iter()
-            .map(|o| {
-                if glows(o.material) || o.slot_materials.iter().any(|&m| glows(m)) {
+            .enumerate()
+            .map(|(i, o)| {
+                if glows(o.material)
+                    || o.slot_materials.iter().any(|&m| glows(m))
+                    || lit.contains(&i)
+                {
                     source(&o.name, SourceKind::Object)
                 } else {
-                    u32::MAX
+                    *other.get_or_insert_with(|| source(OTHER, SourceKind::Object))
                 }
             })
             .collect();

@@ -191,6 +191,7 @@ fn per_light_sources(scene: &Scene) -> Vec<Source> {
     a.sources()
         .iter()
         .filter(|s| match s.name.as_str() {
+            alphabet::OTHER => false,
             _ if s.kind != SourceKind::Background => true,
             alphabet::ENVIRONMENT => scene.environment_light.is_some(),
             _ => scene.background != crate::math::Color::ZERO,
@@ -418,7 +419,10 @@ fn check_label(p: &EventPattern, a: &Alphabet) -> Result<(), LpeError> {
         let more = if names.len() > 8 { ", ..." } else { "" };
         format!("{}{more}", shown.join(", "))
     };
-    let lights = || list(a.sources().iter().map(|s| s.name.as_str()).collect());
+    let lights = || {
+        let names = a.sources().iter().map(|s| s.name.as_str());
+        list(names.filter(|&n| n != alphabet::OTHER).collect())
+    };
     let materials = || list(a.materials().iter().map(String::as_str).collect());
     if p.kind == EventType::Camera {
         return Err(LpeError::new(

@@ -32,7 +32,8 @@ pub const PATHS_PER_KIND: usize = 3;
 /// luminance), `paths` (a few of each kind: `kind`, `sample`, `color` and the `vertices` of
 /// `explain`'s path), and the layout: `camera`, `objects` (each bounded one's `name`, `min`,
 /// `max`) and `lights` (those with a position).
-pub fn pixel_paths(scene: &Scene, (x, y): (u32, u32), samples: u32) -> Value {
+/// `Err` with the reason where the scene's events cannot be numbered (too many materials).
+pub fn pixel_paths(scene: &Scene, (x, y): (u32, u32), samples: u32) -> Result<Value, String> {
     let named: Vec<Named> = KINDS
         .iter()
         .map(|(n, e)| Named {
@@ -40,7 +41,7 @@ pub fn pixel_paths(scene: &Scene, (x, y): (u32, u32), samples: u32) -> Value {
             expr: e.to_string(),
         })
         .collect();
-    let set = LpeSet::new(scene, &named).expect("the kinds match some path in every scene");
+    let set = LpeSet::new(scene, &named).map_err(|e| e.error.to_string())?;
     let s = &scene.settings;
     let camera = scene.camera.raster(s.width, s.height);
     let mut total = Color::ZERO;
@@ -113,7 +114,7 @@ pub fn pixel_paths(scene: &Scene, (x, y): (u32, u32), samples: u32) -> Value {
         .iter()
         .filter_map(|l| l.position().map(|p| json!(p.to_array())))
         .collect();
-    json!({
+    Ok(json!({
         "pixel": [x, y],
         "samples": counted,
         "color": (total / n).to_array(),
@@ -122,7 +123,7 @@ pub fn pixel_paths(scene: &Scene, (x, y): (u32, u32), samples: u32) -> Value {
         "camera": scene.camera.position.to_array(),
         "objects": objects,
         "lights": lights,
-    })
+    }))
 }
 
 #[cfg(test)]
@@ -152,7 +153,7 @@ mod tests {
             Format::Toml,
         )
         .unwrap();
-        let doc = pixel_paths(&scene, (8, 9), 64);
+        let doc = pixel_paths(&scene, (8, 9), 64).unwrap();
         assert_eq!(doc["samples"], 64);
         let color: Vec<f64> = serde_json::from_value(doc["color"].clone()).unwrap();
         let kinds = doc["kinds"].as_array().unwrap();

@@ -136,12 +136,11 @@ pub(crate) async fn pixel(State(ctx): State<Arc<Context>>, q: Asked<PixelQuery>)
         Ok(v) => v,
         Err(r) => return *r,
     };
-    blocking(move || {
-        json(&snell::lpe::pixel::pixel_paths(
-            &scene,
-            (x, y),
-            PIXEL_SAMPLES,
-        ))
-    })
+    blocking(
+        move || match snell::lpe::pixel::pixel_paths(&scene, (x, y), PIXEL_SAMPLES) {
+            Ok(doc) => json(&doc),
+            Err(e) => error(StatusCode::UNPROCESSABLE_ENTITY, &e),
+        },
+    )
     .await
 }
