@@ -82,6 +82,19 @@ impl CameraView {
     }
 }
 
+/// A point seen by the eye, for light tracing ([`Camera::connect`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct EyeConnection {
+    /// Where it lands on the film, in pixels.
+    pub film: (f32, f32),
+    /// The unit direction from the point to the eye.
+    pub to_eye: Vec3A,
+    /// The distance to the eye.
+    pub distance: f32,
+    /// The eye's importance over the connection's density.
+    pub importance: f32,
+}
+
 /// A camera placed by a [`CameraView`].
 #[derive(Clone, Debug, PartialEq)]
 pub struct Camera {
@@ -163,6 +176,38 @@ impl Camera {
             (x + 1.0) * 0.5 * width as f32,
             (1.0 - y) * 0.5 * height as f32,
         ))
+    }
+
+    /// How the eye of a pinhole perspective camera sees world point `p`, for paths that
+    /// start at a light and end at the eye (light tracing): where `p` lands on the film of
+    /// a `width` x `height` image, and the eye's importance over the density of the
+    /// connection, `We / pdf = 1 / (A cos^3 theta d^2)` (pbrt's, `A` the film's area at
+    /// distance 1, `theta` the angle to the view, `d` the distance). `None` where `p` is
+    /// behind the eye or off the film, and for a camera with a lens or an orthographic one
+    /// (no such paths yet).
+    pub fn connect(&self, p: Vec3A, width: u32, height: u32) -> Option<EyeConnection> {
+        if self.view.lens.is_some_and(|l| l.radius > 0.0)
+            || self.view.projection != Projection::Perspective
+        {
+            return None;
+        }
+        let (x, y) = self.project(p, width, height)?;
+        if !(x >= 0.0 && y >= 0.0 && x < width as f32 && y < height as f32) {
+            return None;
+        }
+        let d = self.position - p;
+        let dist2 = d.length_squared();
+        let dist = dist2.sqrt();
+        let to_eye = d / dist;
+        let cos = (-to_eye).dot(self.forward);
+        let aspect = width as f32 / height as f32;
+        let area = 4.0 * self.half_height * self.half_height * aspect;
+        Some(EyeConnection {
+            film: (x, y),
+            to_eye,
+            distance: dist,
+            importance: 1.0 / (area * cos * cos * cos * dist2),
+        })
     }
 
     /// The ray through film position `(x, y)` in pixels (x to the right, y down, (0, 0) the

@@ -4,10 +4,12 @@
 
 pub mod filter;
 mod region;
+pub mod splat;
 pub mod tiles;
 
 pub use filter::{Filter, FilterKind};
 pub use region::Region;
+pub use splat::SplatFilm;
 pub use tiles::{TILE, TileGrid};
 
 use crate::math::{Color, luminance};

@@ -3,10 +3,12 @@
 
 pub mod aov;
 pub mod explain;
+mod light_tracer;
 mod path;
 pub mod path_explain;
 mod whitted;
 
+pub use light_tracer::{LightTracer, LightView};
 pub use path::Path;
 pub use whitted::Whitted;
 

@@ -3,7 +3,7 @@
 //! within the cone of directions they fill. Emission leaves the front side (where the
 //! shape's outward normal points) or both.
 
-use super::{Emit, Falloff, LightSample};
+use super::{Emission, Emit, Falloff, LightSample};
 use crate::geometry::{Disk, Rect, Sphere, SurfaceSample, Triangle, area_to_solid_angle};
 use crate::math::{Color, Ray, Vec2, Vec3A};
 
@@ -181,6 +181,37 @@ impl Emit for AreaLight {
 
     fn kind_name(&self) -> &'static str {
         "area"
+    }
+
+    /// A point uniform over the light's area and a cosine-weighted direction from it (on
+    /// either side, half and half, for a two-sided light): the radiance times the cosine
+    /// over both densities, `L pi / pdf_area` (twice that for two sides). A textured
+    /// light's radiance is its mean.
+    fn sample_le(&self, u: Vec2, v: Vec2, _world: (Vec3A, f32)) -> Option<Emission> {
+        let s = match &self.emitter {
+            Emitter::Rect(e) => e.sample_area(u),
+            Emitter::Disk(e) => e.sample_area(u),
+            Emitter::Triangle(e) => e.sample_area(u),
+            Emitter::Sphere(e) => e.sample_area(u),
+        };
+        if !(s.pdf > 0.0 && s.pdf.is_finite()) {
+            return None;
+        }
+        let (normal, v, sides) = match (self.two_sided, v.x < 0.5) {
+            (true, true) => (-s.normal, Vec2::new(2.0 * v.x, v.y), 2.0),
+            (true, false) => (s.normal, Vec2::new(2.0 * v.x - 1.0, v.y), 2.0),
+            (false, _) => (s.normal, v, 1.0),
+        };
+        let v = v.min(Vec2::splat(1.0 - f32::EPSILON / 2.0));
+        let local = crate::math::sampling::cosine_hemisphere(v);
+        (local.z > 0.0).then(|| Emission {
+            origin: s.point,
+            dir: crate::math::Frame::from_axis(normal).to_world(local),
+            normal: Some(normal),
+            pdf_point: s.pdf,
+            weight: self.radiance * (std::f32::consts::PI * sides / s.pdf),
+            unfalling: false,
+        })
     }
 }
 

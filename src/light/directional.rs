@@ -1,6 +1,6 @@
 //! A directional light: parallel light from infinitely far away, as the sun's.
 
-use super::{Emit, Falloff, LightSample};
+use super::{Emission, Emit, Falloff, LightSample};
 use crate::math::{Color, Vec2, Vec3A, luminance};
 use std::f32::consts::PI;
 
@@ -35,5 +35,20 @@ impl Emit for DirectionalLight {
 
     fn kind_name(&self) -> &'static str {
         "directional"
+    }
+
+    /// A point uniform on the disk of the scene's radius that faces the light, on the
+    /// light's side of the scene: the irradiance over the disk's density `1 / (pi r^2)`.
+    fn sample_le(&self, u: Vec2, _v: Vec2, (centre, radius): (Vec3A, f32)) -> Option<Emission> {
+        let d = crate::math::sampling::uniform_disk_concentric(u) * radius;
+        let frame = crate::math::Frame::from_axis(self.direction);
+        Some(Emission {
+            origin: centre - self.direction * radius + frame.to_world(Vec3A::new(d.x, d.y, 0.0)),
+            dir: self.direction,
+            normal: None,
+            pdf_point: 1.0,
+            weight: self.color * (PI * radius * radius),
+            unfalling: false,
+        })
     }
 }

@@ -59,6 +59,15 @@ crate::closed_set! {
         /// The light's `type` in the scene file.
         fn kind_name(&self) -> &'static str;
 
+        /// Light leaving it, for paths that start at the light (light tracing): a point of
+        /// it chosen by `u` and a direction by `v`, and what the path starts carrying there
+        /// ([`Emission`]). `world` is the scene's bounding sphere (centre, radius), which a
+        /// directional light's parallel rays are sent over. `None` where it sends nothing
+        /// that way (the environment, which light tracing does not start paths at yet).
+        fn sample_le(&self, u: Vec2, v: Vec2, world: (Vec3A, f32)) -> Option<Emission> {
+            None
+        }
+
         /// Where the light is, for lights that have a position.
         fn position(&self) -> Option<Vec3A> {
             None
@@ -96,6 +105,29 @@ impl Light {
             Light::Area(_) | Light::Environment(_) => None,
         }
     }
+}
+
+/// Light leaving a light along a ray, chosen by [`Emit::sample_le`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Emission {
+    /// Where it leaves (on the light).
+    pub origin: Vec3A,
+    /// Its unit direction.
+    pub dir: Vec3A,
+    /// The light's surface normal at `origin`, on the side the light leaves (area lights),
+    /// for offsetting the ray off the surface.
+    pub normal: Option<Vec3A>,
+    /// Emitted radiance (intensity for a point or spot light, irradiance for a directional
+    /// one) times the cosine at the light, over the densities of the point and the
+    /// direction.
+    pub weight: Color,
+    /// The density of `origin` per unit area (1 for a light that is one point or whose
+    /// points are not chosen by area: point, spot and directional lights).
+    pub pdf_point: f32,
+    /// Whether the light does not fall off with distance (`falloff = "none"`): a path from
+    /// it then carries its light to the first surface it meets undimmed by distance, as
+    /// next-event estimation has it.
+    pub unfalling: bool,
 }
 
 /// Light arriving at a point from one source.

@@ -1,7 +1,7 @@
 //! A point light: shines equally in every direction from a point, falling off with distance
 //! as its `falloff` says.
 
-use super::{Emit, Falloff, LightSample};
+use super::{Emission, Emit, Falloff, LightSample};
 use crate::math::{Color, Vec2, Vec3A, luminance};
 use std::f32::consts::PI;
 
@@ -41,6 +41,18 @@ impl Emit for PointLight {
 
     fn kind_name(&self) -> &'static str {
         "point"
+    }
+
+    /// A direction uniform over the sphere: the intensity over its density `1 / 4 pi`.
+    fn sample_le(&self, _u: Vec2, v: Vec2, _world: (Vec3A, f32)) -> Option<Emission> {
+        Some(Emission {
+            origin: self.position,
+            dir: crate::math::sampling::uniform_sphere(v),
+            normal: None,
+            pdf_point: 1.0,
+            weight: self.color * (4.0 * PI),
+            unfalling: self.falloff == Some(Falloff::None),
+        })
     }
 
     fn position(&self) -> Option<Vec3A> {

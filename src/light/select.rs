@@ -45,6 +45,12 @@ impl LightSampler {
         self.choice.is_empty()
     }
 
+    /// A light chosen by `uc` in proportion to its power, and the chance of that choice.
+    pub fn pick(&self, uc: f32) -> Option<(usize, f32)> {
+        let (i, p, _) = self.choice.sample_discrete(uc)?;
+        (p > 0.0).then_some((i, p))
+    }
+
     /// The chance of choosing light `i` (for MIS when a BSDF sample finds it).
     pub fn probability(&self, i: usize) -> f32 {
         self.choice.probability(i)

@@ -1,6 +1,6 @@
 //! A spot light: a point light limited to a cone, with a soft edge.
 
-use super::{Emit, Falloff, LightSample};
+use super::{Emission, Emit, Falloff, LightSample};
 use crate::math::{Color, Vec2, Vec3A, luminance};
 use std::f32::consts::PI;
 
@@ -55,6 +55,22 @@ impl Emit for SpotLight {
 
     fn kind_name(&self) -> &'static str {
         "spot"
+    }
+
+    /// A direction uniform in the cone: the intensity there (the soft edge's step) over
+    /// the cone's density.
+    fn sample_le(&self, _u: Vec2, v: Vec2, _world: (Vec3A, f32)) -> Option<Emission> {
+        use crate::math::sampling::{uniform_cone, uniform_cone_pdf};
+        let local = uniform_cone(v, self.cos_outer);
+        let edge = smoothstep(self.cos_outer, self.cos_inner, local.z);
+        (edge > 0.0).then(|| Emission {
+            origin: self.position,
+            dir: crate::math::Frame::from_axis(self.direction).to_world(local),
+            normal: None,
+            pdf_point: 1.0,
+            weight: self.color * (edge / uniform_cone_pdf(self.cos_outer)),
+            unfalling: self.falloff == Some(Falloff::None),
+        })
     }
 
     fn position(&self) -> Option<Vec3A> {

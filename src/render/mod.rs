@@ -13,6 +13,7 @@ use std::sync::atomic::AtomicBool;
 
 mod aov;
 pub mod estimate;
+pub mod light;
 pub mod lpe;
 pub mod pass;
 mod pixel;

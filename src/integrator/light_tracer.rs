@@ -1,0 +1,208 @@
+//! Light tracing (Mitsuba's particle tracer, pbrt's light path integrator): paths that start
+//! at a light (a light chosen by power, a point and a direction of it) and carry its light
+//! through the scene, connected to the eye at every surface that is not a delta, each
+//! connection added to the film where it lands. It finds what a path tracer cannot: light
+//! from a point or spot light that reaches a diffuse surface through glass or off a mirror
+//! (a caustic). It cannot show mirrors and glass themselves, whose connection to the eye
+//! is a delta, nor the environment, which it does not start paths at yet; bidirectional
+//! path tracing (issue 47) will join it to the path tracer. The transport is the adjoint
+//! one: no `1 / eta^2` on refraction, and the shading normal's correction (Veach).
+
+use super::RayStats;
+use crate::bsdf::Bsdf;
+use crate::camera::Camera;
+use crate::light::Light;
+use crate::math::{Color, Frame, Ray, Vec2, Vec3A, offset_ray_origin};
+use crate::sampler::Sampler;
+use crate::scene::Scene;
+
+/// How much of a connection's length is tested: the last part would meet the eye's side.
+const SHADOW_SHORTEN: f32 = 1.0 - 1e-4;
+
+/// The light tracer.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct LightTracer;
+
+/// What a light path needs of the render: the camera, the film's size, and the scene's
+/// bounding sphere (a directional light's rays are sent over it).
+#[derive(Clone, Copy, Debug)]
+pub struct LightView<'a> {
+    /// The camera (a pinhole perspective one).
+    pub camera: &'a Camera,
+    /// The film's width and height, in pixels.
+    pub size: (u32, u32),
+    /// The scene's bounding sphere: centre and radius.
+    pub world: (Vec3A, f32),
+}
+
+impl LightTracer {
+    /// One path from a light, with random numbers from `sampler` (started at this path),
+    /// each connection to the eye given to `splat(x, y, colour)` (film position in pixels,
+    /// and the colour it adds to a pixel's sum of paths).
+    pub fn trace(
+        &self,
+        scene: &Scene,
+        view: &LightView,
+        sampler: &mut Sampler,
+        rays: &mut RayStats,
+        splat: &mut impl FnMut(f32, f32, Color),
+    ) {
+        let [a, b, c, d] = sampler.next_4d();
+        let Some((i, p_light)) = scene.light_sampler.pick(sampler.next_choice()) else {
+            return;
+        };
+        let light = &scene.lights[i];
+        let Some(e) = light.sample_le(Vec2::new(a, b), Vec2::new(c, d), view.world) else {
+            return;
+        };
+        // An area light seen by the eye: its point joined to the eye.
+        if let (Light::Area(area), Some(n)) = (light, e.normal)
+            && let Some(eye) = view.camera.connect(e.origin, view.size.0, view.size.1)
+        {
+            let cos = n.dot(eye.to_eye);
+            let le = area.emitted(n, eye.to_eye);
+            if cos > 0.0 && le != Color::ZERO {
+                let shadow = Ray::new(offset_ray_origin(e.origin, n), eye.to_eye);
+                rays.shadow += 1;
+                let blocked = scene.occluded(
+                    &shadow,
+                    eye.distance * SHADOW_SHORTEN,
+                    crate::accel::Skip::NONE,
+                );
+                if !blocked {
+                    let value = le * (cos * eye.importance / (p_light * e.pdf_point));
+                    splat(eye.film.0, eye.film.1, value);
+                }
+            }
+        }
+        let mut beta = e.weight / p_light;
+        let origin = e
+            .normal
+            .map_or(e.origin, |n| offset_ray_origin(e.origin, n));
+        let mut ray = Ray::new(origin, e.dir);
+        let mut skip = crate::accel::Skip::NONE;
+        let max_depth = scene.settings.max_depth;
+        let rr_depth = scene.settings.integrator.rr_depth;
+        // Segments traced, the one under way included; the eye's connection is one more.
+        let mut depth = 1u32;
+        let mut medium: Option<Color> = None;
+        loop {
+            rays.secondary += 1;
+            let Some(mut hit) = scene.closest_hit_skipping(&ray, f32::INFINITY, skip) else {
+                break;
+            };
+            if depth == 1 && e.unfalling {
+                // A light that does not fall off reaches its first surface undimmed.
+                beta *= hit.t * hit.t;
+            }
+            if let Some(sigma) = medium {
+                beta *= (-sigma * hit.t).exp();
+            }
+            let tex = hit.tex;
+            let m = scene.material_at(&hit);
+            let front = ray.dir.dot(hit.normal) < 0.0;
+            scene.with_detail(&mut hit, &tex);
+            let base = scene.base_color(&hit, &tex);
+            let frame = Frame::from_axis(hit.shading_normal);
+            let bsdf = m.bsdf(&scene.textures, &tex, base);
+            let wo_world = -ray.dir;
+            let wo = frame.to_local(wo_world);
+            if bsdf.has_non_delta() && depth < max_depth {
+                self.connect_eye(scene, view, &hit, &bsdf, &frame, wo, beta, rays, splat);
+            }
+            if depth >= max_depth {
+                break;
+            }
+            let u = sampler.next_2d();
+            let Some(bs) = bsdf.sample(wo, u, sampler.next_choice()) else {
+                break;
+            };
+            if bs.pdf.is_nan() || bs.pdf <= 0.0 {
+                break;
+            }
+            let wi_world = frame.to_world(bs.wi).normalize_or_zero();
+            let through_shading = bs.wi.z * wo.z < 0.0;
+            let through = wi_world.dot(hit.normal) * wo_world.dot(hit.normal) < 0.0;
+            if through != through_shading || wi_world == Vec3A::ZERO {
+                break;
+            }
+            let correction = shading_correction(&hit, wo_world, wi_world);
+            beta *= bs.f * (bs.wi.z.abs() / bs.pdf * bsdf.radiance_scale(wo, bs.wi) * correction);
+            if !beta.is_finite() || beta == Color::ZERO {
+                break;
+            }
+            let outward = wi_world.dot(hit.normal) > 0.0;
+            if through {
+                medium = if front { m.absorption_inside() } else { None };
+            }
+            let side = if outward { hit.normal } else { -hit.normal };
+            ray = Ray::new(offset_ray_origin(hit.point, side), wi_world);
+            skip = scene.leaving(&hit, outward);
+            depth += 1;
+            if depth > rr_depth {
+                let q = beta.max_element().min(0.95);
+                if sampler.next_choice() >= q {
+                    break;
+                }
+                beta /= q;
+            }
+        }
+    }
+
+    /// The light a path carrying `beta` to `hit` (arriving from `wo`, local) sends to the
+    /// eye, splatted where it lands, if the eye sees the point.
+    #[allow(clippy::too_many_arguments)]
+    fn connect_eye(
+        &self,
+        scene: &Scene,
+        view: &LightView,
+        hit: &crate::scene::Hit,
+        bsdf: &Bsdf,
+        frame: &Frame,
+        wo: Vec3A,
+        beta: Color,
+        rays: &mut RayStats,
+        splat: &mut impl FnMut(f32, f32, Color),
+    ) {
+        let Some(eye) = view.camera.connect(hit.point, view.size.0, view.size.1) else {
+            return;
+        };
+        let wi = frame.to_local(eye.to_eye);
+        // The geometric and the shading normal must agree on the eye's side.
+        let outward = eye.to_eye.dot(hit.normal) > 0.0;
+        let wo_outward = frame.to_world(wo).dot(hit.normal) > 0.0;
+        if (wi.z * wo.z > 0.0) != (outward == wo_outward) {
+            return;
+        }
+        let f = bsdf.f(wo, wi) * bsdf.radiance_scale(wo, wi);
+        if f == Color::ZERO {
+            return;
+        }
+        let correction = shading_correction(hit, frame.to_world(wo), eye.to_eye);
+        let value = beta * f * (wi.z.abs() * correction * eye.importance);
+        if !value.is_finite() || value == Color::ZERO {
+            return;
+        }
+        let side = if outward { hit.normal } else { -hit.normal };
+        let shadow = Ray::new(offset_ray_origin(hit.point, side), eye.to_eye);
+        rays.shadow += 1;
+        if !scene.occluded(
+            &shadow,
+            eye.distance * SHADOW_SHORTEN,
+            scene.leaving(hit, outward),
+        ) {
+            splat(eye.film.0, eye.film.1, value);
+        }
+    }
+}
+
+/// Veach's correction of adjoint transport for a shading normal that is not the geometric
+/// one: `|wo.ns| |wi.ng| / (|wo.ng| |wi.ns|)` (1 where they agree).
+fn shading_correction(hit: &crate::scene::Hit, wo: Vec3A, wi: Vec3A) -> f32 {
+    let (ns, ng) = (hit.shading_normal, hit.normal);
+    let den = wo.dot(ng).abs() * wi.dot(ns).abs();
+    if den == 0.0 {
+        return 0.0;
+    }
+    wo.dot(ns).abs() * wi.dot(ng).abs() / den
+}
