@@ -127,6 +127,7 @@ impl Checkpoint {
                 match i.kind {
                     IntegratorKind::Whitted => 0,
                     IntegratorKind::Path => 1,
+                    IntegratorKind::Light => 2,
                 },
                 match i.sampler {
                     SamplerKind::Independent => 0,
@@ -191,6 +192,7 @@ impl Checkpoint {
                 kind: match kind? {
                     0 => IntegratorKind::Whitted,
                     1 => IntegratorKind::Path,
+                    2 => IntegratorKind::Light,
                     _ => return Err(bad("it names an integrator snell does not have")),
                 },
                 sampler: match sampler? {

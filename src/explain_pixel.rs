@@ -136,7 +136,7 @@ impl PathExplained {
 }
 
 /// What the preview shows for a click on pixel `(x, y)`: the path of sample 0 under the path
-/// tracer, the ray through the pixel's centre under Whitted (at most `max_rays` of its
+/// tracer (and under light tracing, which has no camera paths), the ray through the pixel's centre under Whitted (at most `max_rays` of its
 /// tree), each hit point with its place on the picture ([`place_on_picture`]); `None` when
 /// nothing was recorded.
 pub fn pixel_json(
@@ -145,7 +145,7 @@ pub fn pixel_json(
     (x, y): (u32, u32),
     max_rays: usize,
 ) -> Option<Value> {
-    let mut doc = if scene.settings.integrator.kind == crate::scene::IntegratorKind::Path {
+    let mut doc = if scene.settings.integrator.kind != crate::scene::IntegratorKind::Whitted {
         path(scene, (x, y), 0).to_json(scene, scene_path)
     } else {
         let film = (x as f32 + 0.5, y as f32 + 0.5);

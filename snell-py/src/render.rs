@@ -25,8 +25,9 @@ fn integrator(name: &str) -> PyResult<IntegratorKind> {
     match name.to_ascii_lowercase().as_str() {
         "whitted" => Ok(IntegratorKind::Whitted),
         "path" => Ok(IntegratorKind::Path),
+        "light" => Ok(IntegratorKind::Light),
         other => Err(errors::value(format!(
-            "integrator must be \"whitted\" or \"path\", not {other:?}"
+            "integrator must be \"whitted\", \"path\" or \"light\", not {other:?}"
         ))),
     }
 }

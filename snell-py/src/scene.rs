@@ -109,6 +109,7 @@ pub fn integrator_name(kind: snell::scene::IntegratorKind) -> &'static str {
     match kind {
         snell::scene::IntegratorKind::Whitted => "whitted",
         snell::scene::IntegratorKind::Path => "path",
+        snell::scene::IntegratorKind::Light => "light",
     }
 }
 

@@ -172,3 +172,13 @@ def test_whitted_refuses_expressions(repo):
     with pytest.raises(ValueError) as e:
         snell.render(repo / "scenes/seed.toml", width=8, height=8, spp=1, lpe=["direct"])
     assert "path tracer" in str(e.value)
+
+
+def test_light_tracing_from_python_agrees_with_the_path_tracer(repo):
+    args = dict(width=16, height=16, spp=256, seed=1)
+    light = snell.render(repo / "scenes/cornell.toml", integrator="light", **args)
+    path = snell.render(repo / "scenes/cornell.toml", integrator="path", **args)
+    assert light.shape == (16, 16, 3)
+    assert abs(light.mean() - path.mean()) < 0.03 * path.mean()
+    with pytest.raises(ValueError, match="\"light\""):
+        snell.render(repo / "scenes/cornell.toml", integrator="lite", **args)

@@ -137,7 +137,7 @@ pub(crate) fn sample(scene: &Scene, x: u32, y: u32) -> AovSample {
         .camera
         .ray(x as f32 + 0.5, y as f32 + 0.5, s.width, s.height);
     let mut rays = RayStats::default();
-    if s.integrator.kind == crate::scene::IntegratorKind::Path {
+    if s.integrator.kind != crate::scene::IntegratorKind::Whitted {
         // The path of the pixel's sample 0, as `snell explain --integrator path` shows it,
         // from the centre: its numbers after the two that place it on the film.
         let mut sampler = crate::sampler::Sampler::new(s.integrator.sampler, s.seed);

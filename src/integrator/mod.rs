@@ -16,11 +16,14 @@ use crate::math::{Color, Ray};
 use crate::sampler::Sampler;
 use crate::scene::{IntegratorKind, Scene};
 
-/// The integrator a scene's settings choose.
+/// The integrator a scene's settings choose. Light tracing has no integrator of camera rays
+/// (its renders go through `render::light`): what asks one camera ray's colour of a
+/// light-traced scene (an estimate of its time, the preview's stand-in) gets the path
+/// tracer, which light tracing agrees with.
 pub fn chosen(kind: IntegratorKind) -> &'static dyn Integrator {
     match kind {
         IntegratorKind::Whitted => &Whitted,
-        IntegratorKind::Path => &Path,
+        IntegratorKind::Path | IntegratorKind::Light => &Path,
     }
 }
 

@@ -221,7 +221,8 @@ fn layer_name(source: &str) -> String {
 /// Why a render's expressions cannot be rendered.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum RenderLpeError {
-    /// The scene is rendered by Whitted's ray tracer.
+    /// The scene is not rendered by the path tracer (Whitted's ray tracer, or light
+    /// tracing).
     Whitted,
     /// Two expressions have one name.
     Duplicate(String),
@@ -258,7 +259,7 @@ impl std::fmt::Display for RenderLpeError {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
             RenderLpeError::Whitted => f.write_str(
-                "light path expressions follow the path tracer's paths, and this render is Whitted's",
+                "light path expressions follow the path tracer's paths, and this render is not the path tracer's (it is Whitted's or light tracing)",
             ),
             RenderLpeError::Duplicate(n) => write!(f, "two light path expressions are named `{n}`"),
             RenderLpeError::Taken(n) => write!(

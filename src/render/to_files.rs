@@ -82,6 +82,9 @@ pub enum RunError {
     /// A debug view this render cannot give.
     #[error("{0}")]
     View(String),
+    /// A scene light tracing cannot render.
+    #[error(transparent)]
+    Light(#[from] super::light::LightTraceError),
     /// Light path expressions this render cannot give.
     #[error("{error} (help: {help})", help = .0.help(), error = .0)]
     Lpe(#[from] RenderLpeError),
@@ -123,6 +126,30 @@ pub fn run(scene: &Scene, options: &RunOptions) -> Result<Finished, RunError> {
                 .map(|n| n.name.clone())
                 .zip(r.layers)
                 .collect(),
+        });
+    }
+    if s.integrator.kind == crate::scene::IntegratorKind::Light {
+        let progress = |n: u64| {
+            (options.progress)(JobProgress {
+                done: n * s.spp as u64,
+                total,
+            })
+        };
+        let render = RenderOptions {
+            threads: options.threads,
+            progress: &progress,
+            cancel: options.cancel,
+            region: None,
+        };
+        let r = super::light::render_light(scene, &render)?;
+        return Ok(Finished {
+            complete: r.complete(),
+            image: r.image,
+            film: None,
+            spp: s.spp,
+            rays: r.rays,
+            bad_samples: r.bad_samples,
+            layers: vec![],
         });
     }
     if !integrator.uses_sampler() {
@@ -363,7 +390,7 @@ pub fn render_to_files(
     options: &RunOptions,
 ) -> Result<Finished, RunError> {
     let scene = &job.scene;
-    let sampled = integrator::chosen(scene.settings.integrator.kind).uses_sampler();
+    let sampled = scene.settings.integrator.kind == crate::scene::IntegratorKind::Path;
     if views.contains(&Aov::Variance) && !sampled {
         return Err(RunError::View(
             "the variance view is the path tracer's: Whitted's samples are fixed strata".into(),

@@ -36,6 +36,10 @@ impl Scene {
                 "the scene has no lights and a black background: the path tracer's image will be black"
                     .into()
             }),
+            IntegratorKind::Light => (!emits).then(|| {
+                "the scene has no lights or glowing surfaces: light tracing starts its paths there (not at the environment or the background), so its image will be black"
+                    .into()
+            }),
         }
     }
 

@@ -32,7 +32,14 @@ pub(crate) fn explain(args: ExplainArgs) -> ExitCode {
             )),
         );
     }
-    let path = s.integrator.kind == snell::scene::IntegratorKind::Path;
+    // Light tracing has no camera paths: its scene is explained by the path tracer's path of
+    // the same sample, which light tracing agrees with.
+    let path = s.integrator.kind != snell::scene::IntegratorKind::Whitted;
+    if s.integrator.kind == snell::scene::IntegratorKind::Light && !args.json {
+        println!(
+            "(light tracing traces no camera paths: this is the path tracer's path of the pixel, whose picture light tracing agrees with)"
+        );
+    }
     let film = match args.sample {
         None if path => (0.0, 0.0),
         None => (x as f32 + 0.5, y as f32 + 0.5),

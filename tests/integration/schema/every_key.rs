@@ -346,6 +346,7 @@ fn the_every_key_scene_has_every_key_and_type_of_the_schema() {
         "mitchell",
         "exponential",
         "whitted",
+        "light",
         "sobol",
         "phong",
         "constant",

@@ -13,6 +13,7 @@ use snell::output::OutputError;
 use snell::render::to_files::Outputs;
 
 mod frames;
+mod light;
 mod lpe;
 mod outputs;
 mod passes;
@@ -137,7 +138,8 @@ fn render_job(
             );
         }
     }
-    let random = snell::integrator::chosen(scene.settings.integrator.kind).uses_sampler();
+    let kind = scene.settings.integrator.kind;
+    let random = kind == snell::scene::IntegratorKind::Path;
     let mut aovs: Vec<Aov> = vec![];
     for list in &args.aov {
         // `all` is every view the integrator has: Whitted has no variance.
@@ -154,6 +156,11 @@ fn render_job(
             "the variance view is the path tracer's: Whitted's samples are fixed strata, not random ones whose spread estimates an error",
             Some("render with --integrator path (or [integrator] type = \"path\")"),
         );
+    }
+    if kind == snell::scene::IntegratorKind::Light
+        && let Err(code) = light::check(args)
+    {
+        return code;
     }
     let lpe = match lpe::prepare(args, &scene, &aovs) {
         Ok(l) => l,
@@ -225,6 +232,8 @@ fn render_job(
             .is_none_or(|c| c.film.is_some() || c.tiles.is_empty());
     let outcome = if let Some(set) = &lpe {
         lpe::render_with_lpe(&run, set)
+    } else if kind == snell::scene::IntegratorKind::Light {
+        light::render_light(&run)
     } else if by_passes {
         passes::render_passes(&run, resumed.and_then(|c| c.film), args.time)
     } else {

@@ -293,6 +293,9 @@ fn load(shared: &Shared) -> bool {
             s.integrator = match scene.settings.integrator.kind {
                 IntegratorKind::Whitted => "whitted",
                 IntegratorKind::Path => "path",
+                // The preview has no light tracing: the path tracer, which agrees with it,
+                // stands in.
+                IntegratorKind::Light => "path (for light)",
             };
             s.target_spp = scene.settings.spp;
             s.scene = Some(Arc::new(scene));
