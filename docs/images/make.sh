@@ -40,6 +40,8 @@ render bunny scenes/bunny.toml --width 640 --height 640
 render spot scenes/spot.toml --width 640 --height 480
 render field scenes/field.toml --width 960 --height 540
 render cornell scenes/cornell.toml --spp 4096
+render caustics-path scenes/caustics.toml
+render caustics-light scenes/caustics.toml --integrator light
 render far-checker-filtered scenes/far-checker.toml
 sed 's/^filter_textures = true/filter_textures = false/' scenes/far-checker.toml > scenes/far-checker.point.toml
 render far-checker-point scenes/far-checker.point.toml

@@ -4,7 +4,7 @@
 //! connection added to the film where it lands. It finds what a path tracer cannot: light
 //! from a point or spot light that reaches a diffuse surface through glass or off a mirror
 //! (a caustic). It cannot show mirrors and glass themselves, whose connection to the eye
-//! is a delta, nor the environment, which it does not start paths at yet; bidirectional
+//! is a delta, nor the sky seen directly (it lights the scene); bidirectional
 //! path tracing (issue 47) will join it to the path tracer. The transport is the adjoint
 //! one: no `1 / eta^2` on refraction, and the shading normal's correction (Veach).
 

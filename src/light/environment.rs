@@ -4,7 +4,7 @@
 
 pub use super::env_map::{EnvironmentMap, EnvironmentSample};
 use super::sky::Sky;
-use super::{Emit, Falloff, LightSample};
+use super::{Emission, Emit, Falloff, LightSample};
 use crate::math::{Color, Vec2, Vec3A, luminance};
 use std::f32::consts::PI;
 
@@ -123,6 +123,27 @@ impl Emit for Environment {
 
     fn kind_name(&self) -> &'static str {
         "environment"
+    }
+
+    /// A direction toward the environment by [`Environment::sample`] (from `v`), and a
+    /// point uniform on the disk of the scene's radius that faces it, outside the scene
+    /// (from `u`): light travels from there into the scene, weighing its radiance over both
+    /// densities, `L pi r^2 / pdf` (pbrt's infinite lights).
+    fn sample_le(&self, u: Vec2, v: Vec2, (centre, radius): (Vec3A, f32)) -> Option<Emission> {
+        let s = self.sample(v)?;
+        if s.radiance == Color::ZERO || s.pdf.is_nan() || s.pdf <= 0.0 {
+            return None;
+        }
+        let d = crate::math::sampling::uniform_disk_concentric(u) * radius;
+        let frame = crate::math::Frame::from_axis(s.direction);
+        Some(Emission {
+            origin: centre + s.direction * radius + frame.to_world(Vec3A::new(d.x, d.y, 0.0)),
+            dir: -s.direction,
+            normal: None,
+            pdf_point: 1.0,
+            weight: s.radiance * (PI * radius * radius / s.pdf),
+            unfalling: false,
+        })
     }
 }
 

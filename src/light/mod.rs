@@ -62,8 +62,8 @@ crate::closed_set! {
         /// Light leaving it, for paths that start at the light (light tracing): a point of
         /// it chosen by `u` and a direction by `v`, and what the path starts carrying there
         /// ([`Emission`]). `world` is the scene's bounding sphere (centre, radius), which a
-        /// directional light's parallel rays are sent over. `None` where it sends nothing
-        /// that way (the environment, which light tracing does not start paths at yet).
+        /// directional light's and the environment's parallel rays are sent over. `None`
+        /// where it sends nothing that way.
         fn sample_le(&self, u: Vec2, v: Vec2, world: (Vec3A, f32)) -> Option<Emission> {
             None
         }

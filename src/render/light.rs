@@ -17,9 +17,6 @@ pub enum LightTraceError {
     /// A camera light paths cannot reach.
     #[error("light tracing needs a pinhole perspective camera (no lens, not orthographic)")]
     Camera,
-    /// An environment, which light paths do not start at yet.
-    #[error("light tracing does not start paths at the environment yet")]
-    Environment,
 }
 
 /// Renders `scene` by light tracing, `scene.settings.spp` paths a pixel.
@@ -31,9 +28,6 @@ pub fn render_light(scene: &Scene, options: &RenderOptions) -> Result<Rendered, 
         || v.projection != crate::camera::Projection::Perspective
     {
         return Err(LightTraceError::Camera);
-    }
-    if scene.environment_light.is_some() {
-        return Err(LightTraceError::Environment);
     }
     let world = scene
         .objects

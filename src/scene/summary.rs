@@ -36,8 +36,8 @@ impl Scene {
                 "the scene has no lights and a black background: the path tracer's image will be black"
                     .into()
             }),
-            IntegratorKind::Light => (!emits).then(|| {
-                "the scene has no lights or glowing surfaces: light tracing starts its paths there (not at the environment or the background), so its image will be black"
+            IntegratorKind::Light => (!emits && self.environment().is_none()).then(|| {
+                "the scene has no lights, glowing surfaces or environment: light tracing starts its paths there (not at the background), so its image will be black"
                     .into()
             }),
         }

@@ -78,3 +78,35 @@ fn the_same_bytes_at_any_thread_count() {
     assert_eq!(bits(&a.pixels), bits(&b.pixels));
     assert!(a.pixels.iter().any(|c| c.max_element() > 0.0));
 }
+
+/// The white furnace's cousin: a diffuse ball of albedo 0.5 in a constant environment of
+/// radiance 1 reflects 0.5 toward the eye everywhere on it (a convex surface sees only the
+/// sky); light tracing starts its paths at the environment and finds that, and leaves the
+/// sky seen directly black.
+#[test]
+fn an_environment_lights_a_ball_as_the_furnace_says() {
+    let text = "[image]\nwidth = 16\nheight = 16\nsamples = 4096\n\
+                [integrator]\ntype = \"light\"\n\
+                [camera]\nposition = [0, 0, 4]\nlook_at = [0, 0, 0]\nfov = 30\n\
+                [environment]\ntype = \"constant\"\ncolor = 1\n\
+                [materials.grey]\ntype = \"diffuse\"\ncolor = 0.5\n\
+                [[objects]]\ntype = \"sphere\"\nradius = 1\nmaterial = \"grey\"\n";
+    let scene = load_str(
+        text,
+        std::path::Path::new("t.toml"),
+        std::path::Path::new("."),
+        Format::Toml,
+    )
+    .unwrap();
+    let img = render_light(&scene, &options(2)).unwrap().image;
+    // The 4 x 4 pixels in the middle see the ball; the corners the sky.
+    let mut sum = 0.0;
+    for y in 6..10 {
+        for x in 6..10 {
+            sum += img.get(x, y).element_sum() / 3.0;
+        }
+    }
+    let mean = sum / 16.0;
+    assert!((mean - 0.5).abs() < 0.02, "{mean}");
+    assert_eq!(img.get(0, 0), crate::math::Color::ZERO);
+}

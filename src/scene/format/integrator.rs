@@ -41,8 +41,8 @@ pub enum IntegratorKind {
     /// Unidirectional path tracing with next-event estimation and MIS.
     Path,
     /// Light tracing: paths from the lights, connected to the eye (Mitsuba's particle
-    /// tracer). It finds the caustics of point and spot lights; mirrors and glass seen
-    /// directly are black, and the environment lights nothing (docs/scene-format.md).
+    /// tracer). It finds the caustics of point and spot lights; mirrors, glass and the sky
+    /// seen directly are black (docs/scene-format.md).
     Light,
 }
 
