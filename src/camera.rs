@@ -87,6 +87,8 @@ impl CameraView {
 pub struct EyeConnection {
     /// Where it lands on the film, in pixels.
     pub film: (f32, f32),
+    /// The point of the eye it connects to (on the lens, for a camera with one).
+    pub eye: Vec3A,
     /// The unit direction from the point to the eye.
     pub to_eye: Vec3A,
     /// The distance to the eye.
@@ -178,24 +180,38 @@ impl Camera {
         ))
     }
 
-    /// How the eye of a pinhole perspective camera sees world point `p`, for paths that
-    /// start at a light and end at the eye (light tracing): where `p` lands on the film of
-    /// a `width` x `height` image, and the eye's importance over the density of the
-    /// connection, `We / pdf = 1 / (A cos^3 theta d^2)` (pbrt's, `A` the film's area at
-    /// distance 1, `theta` the angle to the view, `d` the distance). `None` where `p` is
-    /// behind the eye or off the film, and for a camera with a lens or an orthographic one
-    /// (no such paths yet).
-    pub fn connect(&self, p: Vec3A, width: u32, height: u32) -> Option<EyeConnection> {
-        if self.view.lens.is_some_and(|l| l.radius > 0.0)
-            || self.view.projection != Projection::Perspective
-        {
+    /// How the eye of a perspective camera sees world point `p`, for paths that start at a
+    /// light and end at the eye (light tracing): the point of the eye (the pinhole, or the
+    /// point of the lens `u` picks, uniformly over its disk, as [`RasterCamera::ray_lens`]
+    /// does), where `p` lands on the film of a `width` x `height` image (through the plane
+    /// in focus, for a lens), and the eye's importance over the density of the connection,
+    /// `We / pdf = 1 / (A cos^3 theta d^2)` (pbrt's, `A` the film's area at distance 1,
+    /// `theta` the angle to the view, `d` the distance; the lens's area cancels). `None`
+    /// where `p` is behind the eye or off the film, and for an orthographic camera (no such
+    /// paths yet).
+    pub fn connect(&self, p: Vec3A, u: Vec2, width: u32, height: u32) -> Option<EyeConnection> {
+        if self.view.projection != Projection::Perspective {
             return None;
         }
-        let (x, y) = self.project(p, width, height)?;
+        let (eye, seen) = match self.view.lens.filter(|l| l.radius > 0.0) {
+            None => (self.position, p),
+            Some(lens) => {
+                let d = uniform_disk_concentric(u) * lens.radius;
+                let eye = self.position + self.right * d.x + self.up * d.y;
+                let z = (p - eye).dot(self.forward);
+                if z <= 0.0 {
+                    return None;
+                }
+                // Where the line from the lens point through `p` meets the plane in focus:
+                // the film position whose rays all pass there.
+                (eye, eye + (p - eye) * (lens.focus / z))
+            }
+        };
+        let (x, y) = self.project(seen, width, height)?;
         if !(x >= 0.0 && y >= 0.0 && x < width as f32 && y < height as f32) {
             return None;
         }
-        let d = self.position - p;
+        let d = eye - p;
         let dist2 = d.length_squared();
         let dist = dist2.sqrt();
         let to_eye = d / dist;
@@ -204,6 +220,7 @@ impl Camera {
         let area = 4.0 * self.half_height * self.half_height * aspect;
         Some(EyeConnection {
             film: (x, y),
+            eye,
             to_eye,
             distance: dist,
             importance: 1.0 / (area * cos * cos * cos * dist2),

@@ -57,7 +57,9 @@ impl LightTracer {
         };
         // An area light seen by the eye: its point joined to the eye.
         if let (Light::Area(area), Some(n)) = (light, e.normal)
-            && let Some(eye) = view.camera.connect(e.origin, view.size.0, view.size.1)
+            && let Some(eye) =
+                view.camera
+                    .connect(e.origin, sampler.next_2d(), view.size.0, view.size.1)
         {
             let cos = n.dot(eye.to_eye);
             let le = area.emitted(n, eye.to_eye);
@@ -108,7 +110,13 @@ impl LightTracer {
             let wo_world = -ray.dir;
             let wo = frame.to_local(wo_world);
             if bsdf.has_non_delta() && depth < max_depth {
-                self.connect_eye(scene, view, &hit, &bsdf, &frame, wo, beta, rays, splat);
+                let at = Vertex {
+                    hit: &hit,
+                    bsdf: &bsdf,
+                    frame: &frame,
+                    wo,
+                };
+                self.connect_eye(scene, view, &at, beta, sampler, rays, splat);
             }
             if depth >= max_depth {
                 break;
@@ -156,15 +164,17 @@ impl LightTracer {
         &self,
         scene: &Scene,
         view: &LightView,
-        hit: &crate::scene::Hit,
-        bsdf: &Bsdf,
-        frame: &Frame,
-        wo: Vec3A,
+        at: &Vertex,
         beta: Color,
+        sampler: &mut Sampler,
         rays: &mut RayStats,
         splat: &mut impl FnMut(f32, f32, Color),
     ) {
-        let Some(eye) = view.camera.connect(hit.point, view.size.0, view.size.1) else {
+        let (hit, bsdf, frame, wo) = (at.hit, at.bsdf, at.frame, at.wo);
+        let Some(eye) = view
+            .camera
+            .connect(hit.point, sampler.next_2d(), view.size.0, view.size.1)
+        else {
             return;
         };
         let wi = frame.to_local(eye.to_eye);
@@ -194,6 +204,15 @@ impl LightTracer {
             splat(eye.film.0, eye.film.1, value);
         }
     }
+}
+
+/// A surface a light path met: the hit, its BSDF and shading frame, and the direction back
+/// toward the light (local).
+struct Vertex<'a> {
+    hit: &'a crate::scene::Hit,
+    bsdf: &'a Bsdf,
+    frame: &'a Frame,
+    wo: Vec3A,
 }
 
 /// Veach's correction of adjoint transport for a shading normal that is not the geometric

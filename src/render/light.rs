@@ -15,7 +15,7 @@ pub enum LightTraceError {
     #[error(transparent)]
     Render(#[from] RenderError),
     /// A camera light paths cannot reach.
-    #[error("light tracing needs a pinhole perspective camera (no lens, not orthographic)")]
+    #[error("light tracing needs a perspective camera (not an orthographic one)")]
     Camera,
 }
 
@@ -24,9 +24,7 @@ pub fn render_light(scene: &Scene, options: &RenderOptions) -> Result<Rendered, 
     let s = &scene.settings;
     let camera = &scene.camera;
     let v = camera.view();
-    if v.lens.is_some_and(|l| l.radius > 0.0)
-        || v.projection != crate::camera::Projection::Perspective
-    {
+    if v.projection != crate::camera::Projection::Perspective {
         return Err(LightTraceError::Camera);
     }
     let world = scene

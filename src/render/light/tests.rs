@@ -9,8 +9,15 @@ use crate::render::render;
 use crate::scene::{Format, load_str};
 
 fn cornell(size: u32, spp: u32) -> Scene {
+    cornell_with(size, spp, "")
+}
+
+/// The Cornell box with `camera` added to its `[camera]` table.
+fn cornell_with(size: u32, spp: u32, camera: &str) -> Scene {
     let text = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/scenes/cornell.toml"))
-        .unwrap();
+        .unwrap()
+        .replace("fov = 39.3077\n", &format!("fov = 39.3077\n{camera}\n"));
+    assert!(camera.is_empty() || text.contains(camera));
     let mut s = load_str(
         &text,
         std::path::Path::new("cornell.toml"),
@@ -22,6 +29,58 @@ fn cornell(size: u32, spp: u32) -> Scene {
     s.settings.height = size;
     s.settings.spp = spp;
     s
+}
+
+/// The light-traced and the path-traced pictures of `scene`, 4 x 4-pixel blocks compared:
+/// the worst block's relative difference and the means'.
+fn compare(make: impl Fn() -> Scene) -> (f64, f64) {
+    let path = render(&make(), &Path, Some(2), &|_| {}).unwrap().image;
+    let light = render_light(&make(), &options(2)).unwrap().image;
+    let size = path.width;
+    let block = |img: &crate::film::Image, bx: u32, by: u32| {
+        let mut sum = 0.0f64;
+        for y in by * 4..by * 4 + 4 {
+            for x in bx * 4..bx * 4 + 4 {
+                sum += crate::math::luminance(img.get(x, y)) as f64;
+            }
+        }
+        sum / 16.0
+    };
+    let mut worst = 0.0f64;
+    let mut checked = 0;
+    for by in 0..size / 4 {
+        for bx in 0..size / 4 {
+            let (p, l) = (block(&path, bx, by), block(&light, bx, by));
+            worst = worst.max((l - p).abs() / p.max(0.02));
+            checked += 1;
+        }
+    }
+    assert_eq!(checked, (size / 4) * (size / 4));
+    let mean = |img: &crate::film::Image| {
+        img.pixels
+            .iter()
+            .map(|c| crate::math::luminance(*c) as f64)
+            .sum::<f64>()
+            / img.pixels.len() as f64
+    };
+    let (p, l) = (mean(&path), mean(&light));
+    (worst, (l - p).abs() / p)
+}
+
+/// Through a lens (the boxes out of focus), light tracing joins each surface to a point of
+/// the lens and lands where that line meets the plane in focus: the picture is the path
+/// tracer's, block by block within noise (measured: the worst block 2.8 %, the means 0.2 %).
+#[test]
+fn the_cornell_box_through_a_lens_light_traced_is_the_path_traced_one() {
+    let lens = "aperture = 0.15\nfocus_distance = 2.5";
+    let l = cornell_with(8, 1, lens).camera.view().lens;
+    assert!(
+        l.is_some_and(|l| l.radius == 0.15 && l.focus == 2.5),
+        "{l:?}"
+    );
+    let (worst, mean) = compare(|| cornell_with(24, 2048, lens));
+    assert!(worst < 0.06, "worst block {worst}");
+    assert!(mean < 0.005, "means {mean}");
 }
 
 /// Block by block (4 x 4 pixels), the light-traced Cornell box is the path-traced one
