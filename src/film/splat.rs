@@ -48,6 +48,23 @@ impl SplatFilm {
         }
     }
 
+    /// The sums as they are now, to go back to ([`SplatFilm::restore`]).
+    pub fn snapshot(&self) -> Vec<[u64; 3]> {
+        self.sums
+            .iter()
+            .map(|s| s.each_ref().map(|a| a.load(Ordering::Relaxed)))
+            .collect()
+    }
+
+    /// Puts the sums back as `snapshot` had them (a pass given up).
+    pub fn restore(&self, snapshot: &[[u64; 3]]) {
+        for (sum, saved) in self.sums.iter().zip(snapshot) {
+            for (a, v) in sum.iter().zip(saved) {
+                a.store(*v, Ordering::Relaxed);
+            }
+        }
+    }
+
     /// The picture: each pixel's sums times `scale`.
     pub fn image(&self, scale: f32) -> Image {
         let k = scale as f64 / FRACTION;

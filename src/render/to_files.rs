@@ -39,7 +39,8 @@ pub struct RunOptions<'a> {
     /// Set to stop: the path tracer ends its pass early, Whitted skips the tiles not yet
     /// started; what is done is kept.
     pub cancel: Option<&'a AtomicBool>,
-    /// For the path tracer: stop after the pass that spends this much time.
+    /// For the path tracer and light tracing: stop after the pass that spends this much
+    /// time.
     pub time: Option<Duration>,
     /// Light path expressions to render beside the picture, besides the scene's own
     /// (`[[image.lpe]]`; one named like the scene's replaces it). With any, the path
@@ -141,14 +142,14 @@ pub fn run(scene: &Scene, options: &RunOptions) -> Result<Finished, RunError> {
             cancel: options.cancel,
             region: None,
         };
-        let r = super::light::render_light(scene, &render)?;
+        let r = super::light::render_light_for(scene, &render, options.time)?;
         return Ok(Finished {
-            complete: r.complete(),
-            image: r.image,
+            complete: r.rendered.complete(),
+            image: r.rendered.image,
             film: None,
-            spp: s.spp,
-            rays: r.rays,
-            bad_samples: r.bad_samples,
+            spp: r.spp,
+            rays: r.rendered.rays,
+            bad_samples: r.rendered.bad_samples,
             layers: vec![],
         });
     }

@@ -169,3 +169,28 @@ fn an_environment_lights_a_ball_as_the_furnace_says() {
     assert!((mean - 0.5).abs() < 0.02, "{mean}");
     assert_eq!(img.get(0, 0), crate::math::Color::ZERO);
 }
+
+/// A render stopped by its time after some passes is the render of that many paths a
+/// pixel, to the bit (splats add up as integers); the first pass is always taken.
+#[test]
+fn a_render_stopped_by_time_is_the_render_of_its_paths() {
+    let stopped = render_light_for(&cornell(16, 4096), &options(2), Some(Duration::ZERO)).unwrap();
+    assert_eq!(stopped.spp, 1, "only the first pass");
+    assert!(stopped.rendered.complete());
+    let short = render_light_for(
+        &cornell(16, 4096),
+        &options(2),
+        Some(Duration::from_millis(30)),
+    )
+    .unwrap();
+    assert!(short.spp >= 1 && short.spp < 4096, "{}", short.spp);
+    for r in [stopped, short] {
+        let whole = render_light(&cornell(16, r.spp), &options(1)).unwrap();
+        assert_eq!(
+            bits(&r.rendered.image.pixels),
+            bits(&whole.image.pixels),
+            "{}",
+            r.spp
+        );
+    }
+}

@@ -1,6 +1,6 @@
-//! A light-traced render from the command line (`--integrator light`): every path at once,
-//! tile by tile of the film's worth of paths, without the flags that need passes or tiles
-//! of finished pixels.
+//! A light-traced render from the command line (`--integrator light`): passes of 1, 2, 4
+//! ... paths a pixel (`--time` stops after a pass), without the flags that need a film of
+//! sums or tiles of finished pixels.
 
 use super::{Outcome, Run, STOP};
 use crate::args::RenderArgs;
@@ -14,7 +14,6 @@ pub(super) fn check(args: &RenderArgs) -> Result<(), ExitCode> {
         (args.region.is_some(), "--region"),
         (args.checkpoint.is_some(), "--checkpoint"),
         (args.resume.is_some(), "--resume"),
-        (args.time.is_some(), "--time"),
     ];
     match other.iter().find(|(given, _)| *given) {
         Some((_, flag)) => Err(usage_error(
@@ -25,25 +24,27 @@ pub(super) fn check(args: &RenderArgs) -> Result<(), ExitCode> {
     }
 }
 
-/// Renders `run`'s scene by light tracing (Ctrl-C leaves the paths of the tiles not
-/// started out: the picture is darker where they would have landed).
-pub(super) fn render_light(run: &Run) -> Result<Outcome, String> {
+/// Renders `run`'s scene by light tracing, until its samples or `time` are spent or Ctrl-C
+/// stops it (the pass under way is then left out: the picture is that of the passes done).
+pub(super) fn render_light(
+    run: &Run,
+    time: Option<std::time::Duration>,
+) -> Result<Outcome, String> {
     let options = RenderOptions {
         threads: run.threads,
         progress: &|n| run.bar.set_position(n),
         cancel: Some(&STOP),
         region: None,
     };
-    let r = snell::render::light::render_light(run.scene, &options).map_err(|e| e.to_string())?;
-    let spp = run.scene.settings.spp;
+    let r = snell::render::light::render_light_for(run.scene, &options, time)
+        .map_err(|e| e.to_string())?;
+    let (spp, r) = (r.spp, r.rendered);
+    let pixels = run.scene.settings.width as u64 * run.scene.settings.height as u64;
     Ok(Outcome {
         complete: r.complete(),
         spp,
-        samples: r.pixels_rendered * spp as u64,
-        done: format!(
-            "the paths of {} of {} tiles traced (the picture lacks the others' light)",
-            r.tiles_done, r.tiles_total
-        ),
+        samples: pixels * spp as u64,
+        done: format!("{spp} paths a pixel (the pass under way left out)"),
         checkpoint: None,
         image: r.image,
         rays: r.rays,

@@ -233,7 +233,7 @@ fn render_job(
     let outcome = if let Some(set) = &lpe {
         lpe::render_with_lpe(&run, set)
     } else if kind == snell::scene::IntegratorKind::Light {
-        light::render_light(&run)
+        light::render_light(&run, args.time)
     } else if by_passes {
         passes::render_passes(&run, resumed.and_then(|c| c.film), args.time)
     } else {
