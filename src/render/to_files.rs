@@ -68,6 +68,22 @@ pub struct Finished {
     pub layers: Vec<(String, Image)>,
 }
 
+impl Finished {
+    /// What a render of every sample of each pixel at once came to (no film of sums kept):
+    /// `spp` samples a pixel, and the expressions' images `layers`.
+    fn whole(r: super::Rendered, spp: u32, layers: Vec<(String, Image)>) -> Self {
+        Finished {
+            complete: r.complete(),
+            image: r.image,
+            film: None,
+            spp,
+            rays: r.rays,
+            bad_samples: r.bad_samples,
+            layers,
+        }
+    }
+}
+
 /// Why a job could not be rendered to its files.
 #[derive(Debug, thiserror::Error)]
 pub enum RunError {
@@ -97,85 +113,39 @@ pub fn run(scene: &Scene, options: &RunOptions) -> Result<Finished, RunError> {
     let integrator = integrator::chosen(s.integrator.kind);
     let pixels = s.width as u64 * s.height as u64;
     let total = pixels * s.spp as u64;
+    // Renders that take every sample of a pixel at once (expressions, light tracing,
+    // Whitted) report the pixels finished.
+    let whole_progress = |n: u64| {
+        (options.progress)(JobProgress {
+            done: n * s.spp as u64,
+            total,
+        })
+    };
+    let whole = RenderOptions {
+        threads: options.threads,
+        progress: &whole_progress,
+        cancel: options.cancel,
+        region: None,
+    };
     if let Some(set) = lpe::for_render(scene, options.lpe, &[])? {
-        let progress = |n: u64| {
-            (options.progress)(JobProgress {
-                done: n * s.spp as u64,
-                total,
-            })
-        };
-        let render = RenderOptions {
-            threads: options.threads,
-            progress: &progress,
-            cancel: options.cancel,
-            region: None,
-        };
-        let r = render_lpe(scene, &set, &render).map_err(|e| match e {
+        let r = render_lpe(scene, &set, &whole).map_err(|e| match e {
             LpeRenderError::Render(e) => RunError::Render(e),
             LpeRenderError::NotPathTracer => RunError::Lpe(RenderLpeError::Whitted),
         })?;
-        return Ok(Finished {
-            complete: r.rendered.complete(),
-            image: r.rendered.image,
-            film: None,
-            spp: s.spp,
-            rays: r.rendered.rays,
-            bad_samples: r.rendered.bad_samples,
-            layers: set
-                .named
-                .iter()
-                .map(|n| n.name.clone())
-                .zip(r.layers)
-                .collect(),
-        });
+        let names = set.named.iter().map(|n| n.name.clone());
+        return Ok(Finished::whole(
+            r.rendered,
+            s.spp,
+            names.zip(r.layers).collect(),
+        ));
     }
     if s.integrator.kind == crate::scene::IntegratorKind::Light {
-        let progress = |n: u64| {
-            (options.progress)(JobProgress {
-                done: n * s.spp as u64,
-                total,
-            })
-        };
-        let render = RenderOptions {
-            threads: options.threads,
-            progress: &progress,
-            cancel: options.cancel,
-            region: None,
-        };
-        let r = super::light::render_light_for(scene, &render, options.time)?;
-        return Ok(Finished {
-            complete: r.rendered.complete(),
-            image: r.rendered.image,
-            film: None,
-            spp: r.spp,
-            rays: r.rendered.rays,
-            bad_samples: r.rendered.bad_samples,
-            layers: vec![],
-        });
+        let r = super::light::render_light_for(scene, &whole, options.time)?;
+        return Ok(Finished::whole(r.rendered, r.spp, vec![]));
     }
     if !integrator.uses_sampler() {
-        let progress = |n: u64| {
-            (options.progress)(JobProgress {
-                done: n * s.spp as u64,
-                total,
-            })
-        };
-        let render = RenderOptions {
-            threads: options.threads,
-            progress: &progress,
-            cancel: options.cancel,
-            region: None,
-        };
-        let r = render_with(scene, integrator, &render, None)?;
-        return Ok(Finished {
-            complete: r.complete(),
-            image: r.image,
-            film: None,
-            spp: s.spp,
-            rays: r.rays,
-            bad_samples: r.bad_samples,
-            layers: vec![],
-        });
+        let r = render_with(scene, integrator, &whole, None)?;
+        return Ok(Finished::whole(r, s.spp, vec![]));
     }
     let count = SampleCount::default();
     let progress = |n: u64| {

@@ -88,46 +88,9 @@ fn the_cornell_box_through_a_lens_light_traced_is_the_path_traced_one() {
 /// worst block 1.4 %).
 #[test]
 fn the_cornell_box_light_traced_is_the_path_traced_one() {
-    let size = 24;
-    let path = render(&cornell(size, 2048), &Path, Some(2), &|_| {})
-        .unwrap()
-        .image;
-    let light = render_light(&cornell(size, 2048), &options(2))
-        .unwrap()
-        .image;
-    let block = |img: &crate::film::Image, bx: u32, by: u32| {
-        let mut sum = 0.0f64;
-        for y in by * 4..by * 4 + 4 {
-            for x in bx * 4..bx * 4 + 4 {
-                sum += crate::math::luminance(img.get(x, y)) as f64;
-            }
-        }
-        sum / 16.0
-    };
-    let mut checked = 0;
-    let mut worst = 0.0f64;
-    for by in 0..size / 4 {
-        for bx in 0..size / 4 {
-            let (p, l) = (block(&path, bx, by), block(&light, bx, by));
-            let rel = (l - p).abs() / p.max(0.02);
-            worst = worst.max(rel);
-            assert!(rel < 0.05, "block ({bx}, {by}): light {l}, path {p}");
-            checked += 1;
-        }
-    }
-    assert_eq!(checked, 36);
-    let mean = |img: &crate::film::Image| {
-        img.pixels
-            .iter()
-            .map(|c| crate::math::luminance(*c) as f64)
-            .sum::<f64>()
-            / img.pixels.len() as f64
-    };
-    let (p, l) = (mean(&path), mean(&light));
-    assert!(
-        (l - p).abs() / p < 0.005,
-        "mean: light {l}, path {p} (worst block {worst})"
-    );
+    let (worst, mean) = compare(|| cornell(24, 2048));
+    assert!(worst < 0.05, "worst block {worst}");
+    assert!(mean < 0.005, "means {mean}");
 }
 
 #[test]
