@@ -227,6 +227,26 @@ impl Camera {
         })
     }
 
+    /// The density per unit solid angle with which a perspective camera's rays of a `width`
+    /// x `height` film take direction `dir` (unit), film positions being uniform:
+    /// `1 / (A cos^3 theta)`, `A` the film's area at distance 1 and `theta` the angle to the
+    /// view (pbrt's; the same from any point of a lens). 0 off the film, behind the eye and
+    /// for an orthographic camera. Bidirectional path tracing weighs its strategies by it.
+    pub fn direction_pdf(&self, dir: Vec3A, width: u32, height: u32) -> f32 {
+        let cos = dir.dot(self.forward);
+        if self.view.projection != Projection::Perspective || cos <= 0.0 {
+            return 0.0;
+        }
+        let aspect = width as f32 / height as f32;
+        let x = dir.dot(self.right) / (cos * self.half_height * aspect);
+        let y = dir.dot(self.up) / (cos * self.half_height);
+        if x.abs() > 1.0 || y.abs() > 1.0 {
+            return 0.0;
+        }
+        let area = 4.0 * self.half_height * self.half_height * aspect;
+        1.0 / (area * cos * cos * cos)
+    }
+
     /// The ray through film position `(x, y)` in pixels (x to the right, y down, (0, 0) the
     /// top-left corner of the image) for an image of `width` by `height` pixels.
     #[inline]
@@ -483,6 +503,31 @@ mod tests {
         chi2_square("thin lens", 24, polar, |_| 1.0).unwrap();
         let broken = |p: Vec2| if p.y < 0.5 { 1.1 } else { 0.9 };
         assert!(chi2_square("thin lens, wrong density", 24, polar, broken).is_err());
+    }
+
+    /// Rays through film positions uniform over a wide film take their directions with the
+    /// density `direction_pdf` gives (chi-square), and the eye's importance over a
+    /// connection's density is that density over the distance squared.
+    #[test]
+    fn ray_directions_have_the_density_bidirectional_paths_weigh_by() {
+        use crate::math::chi2::{SphereBins, chi2_sphere};
+        let c = Camera::new(Vec3A::ZERO, Vec3A::Z, Vec3A::Y, 100.0);
+        let (w, h) = (64, 40);
+        let r = c.raster(w, h);
+        chi2_sphere(
+            "camera rays",
+            // Coarse bins: fewer of them straddle the film's edge, where the expected
+            // counts' integration is least exact.
+            SphereBins { theta: 10, phi: 16 },
+            |u| Some(r.ray(u.x * w as f32, u.y * h as f32).dir),
+            |d| c.direction_pdf(d, w, h),
+        )
+        .unwrap();
+        let p = Vec3A::new(0.7, -0.4, 3.0);
+        let e = c.connect(p, Vec2::ZERO, w, h).unwrap();
+        let want = c.direction_pdf(-e.to_eye, w, h) / (e.distance * e.distance);
+        assert!((e.importance - want).abs() < 1e-6 * want);
+        assert_eq!(c.direction_pdf(-Vec3A::Z, w, h), 0.0);
     }
 
     /// Every lens ray through a film position meets the pinhole ray through it on the plane

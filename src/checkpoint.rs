@@ -128,6 +128,7 @@ impl Checkpoint {
                     IntegratorKind::Whitted => 0,
                     IntegratorKind::Path => 1,
                     IntegratorKind::Light => 2,
+                    IntegratorKind::Bdpt => 3,
                 },
                 match i.sampler {
                     SamplerKind::Independent => 0,
@@ -193,6 +194,7 @@ impl Checkpoint {
                     0 => IntegratorKind::Whitted,
                     1 => IntegratorKind::Path,
                     2 => IntegratorKind::Light,
+                    3 => IntegratorKind::Bdpt,
                     _ => return Err(bad("it names an integrator snell does not have")),
                 },
                 sampler: match sampler? {

@@ -35,6 +35,28 @@ pub struct LightView<'a> {
     pub world: (Vec3A, f32),
 }
 
+impl<'a> LightView<'a> {
+    /// The view of `scene`'s camera and image, and the sphere that bounds its objects.
+    pub fn of(scene: &'a Scene) -> Self {
+        let world = scene
+            .objects
+            .iter()
+            .filter_map(|o| o.world_bounds)
+            .reduce(|a, b| a.union(&b))
+            .map_or((Vec3A::ZERO, 1.0), |b| {
+                (
+                    (b.min + b.max) * 0.5,
+                    (0.5 * (b.max - b.min).length()).max(1e-3),
+                )
+            });
+        LightView {
+            camera: &scene.camera,
+            size: (scene.settings.width, scene.settings.height),
+            world,
+        }
+    }
+}
+
 impl LightTracer {
     /// One path from a light, with random numbers from `sampler` (started at this path),
     /// each connection to the eye given to `splat(x, y, colour)` (film position in pixels,

@@ -2,12 +2,14 @@
 //! once per render, so a trait object is fine here.
 
 pub mod aov;
+mod bdpt;
 pub mod explain;
 mod light_tracer;
 mod path;
 pub mod path_explain;
 mod whitted;
 
+pub use bdpt::{Bdpt, Paths};
 pub use light_tracer::{LightTracer, LightView};
 pub use path::Path;
 pub use whitted::Whitted;
@@ -16,14 +18,15 @@ use crate::math::{Color, Ray};
 use crate::sampler::Sampler;
 use crate::scene::{IntegratorKind, Scene};
 
-/// The integrator a scene's settings choose. Light tracing has no integrator of camera rays
-/// (its renders go through `render::light`): what asks one camera ray's colour of a
-/// light-traced scene (an estimate of its time, the preview's stand-in) gets the path
-/// tracer, which light tracing agrees with.
+/// The integrator a scene's settings choose. Light tracing and bidirectional path tracing
+/// have no integrator of camera rays alone (their renders go through `render::light` and
+/// `render::bdpt`, as their light lands anywhere on the film): what asks one camera ray's
+/// colour of such a scene (an estimate of its time, the preview's stand-in) gets the path
+/// tracer, which they agree with.
 pub fn chosen(kind: IntegratorKind) -> &'static dyn Integrator {
     match kind {
         IntegratorKind::Whitted => &Whitted,
-        IntegratorKind::Path | IntegratorKind::Light => &Path,
+        IntegratorKind::Path | IntegratorKind::Light | IntegratorKind::Bdpt => &Path,
     }
 }
 

@@ -213,6 +213,23 @@ impl Emit for AreaLight {
             unfalling: false,
         })
     }
+
+    /// A point by area (as [`Emit::sample_le`] picks it), a direction by the cosine about
+    /// the normal of the side it leaves (each side half the time, for a two-sided light).
+    fn pdf_le(&self, normal: Option<Vec3A>, dir: Vec3A, _radius: f32) -> (f32, f32) {
+        let cos = normal.map_or(0.0, |n| n.dot(dir));
+        let (cos, sides) = if self.two_sided {
+            (cos.abs(), 0.5)
+        } else {
+            (cos, 1.0)
+        };
+        let pdf_dir = if cos > 0.0 {
+            cos * std::f32::consts::FRAC_1_PI * sides
+        } else {
+            0.0
+        };
+        (1.0 / self.emitter.area(), pdf_dir)
+    }
 }
 
 #[cfg(test)]

@@ -51,4 +51,8 @@ impl Emit for DirectionalLight {
             unfalling: false,
         })
     }
+
+    fn pdf_le(&self, _normal: Option<Vec3A>, _dir: Vec3A, radius: f32) -> (f32, f32) {
+        (1.0 / (PI * radius * radius), 0.0)
+    }
 }

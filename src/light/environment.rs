@@ -145,6 +145,10 @@ impl Emit for Environment {
             unfalling: false,
         })
     }
+
+    fn pdf_le(&self, _normal: Option<Vec3A>, dir: Vec3A, radius: f32) -> (f32, f32) {
+        (1.0 / (PI * radius * radius), self.pdf(-dir))
+    }
 }
 
 #[cfg(test)]

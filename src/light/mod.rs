@@ -68,6 +68,17 @@ crate::closed_set! {
             None
         }
 
+        /// The densities with which [`Emit::sample_le`] sends light from a point of it (with
+        /// surface normal `normal`, on the side it leaves, for an area light) in direction
+        /// `dir` (unit, the way light travels), in a scene of bounding radius `radius`: of the
+        /// point, per unit area (1 for a light that is one point; `1 / pi r^2` for the disk a
+        /// directional light's or the environment's rays are sent over), and of the direction,
+        /// per unit solid angle (0 for a direction a delta picks, or that it never sends).
+        /// What bidirectional path tracing weighs its strategies by.
+        fn pdf_le(&self, normal: Option<Vec3A>, dir: Vec3A, radius: f32) -> (f32, f32) {
+            (0.0, 0.0)
+        }
+
         /// Where the light is, for lights that have a position.
         fn position(&self) -> Option<Vec3A> {
             None
@@ -224,5 +235,84 @@ mod tests {
         let s = at(&d, Vec3A::new(100.0, 0.0, 0.0)).unwrap();
         assert_eq!(s.to_light, Vec3A::Y);
         assert!(s.distance.is_infinite());
+    }
+
+    /// Every light that sends light from a point sends its directions with the density
+    /// `pdf_le` gives (chi-square), and the weight `sample_le` reports is its light times
+    /// the cosine over the densities `pdf_le` gives of the point and the direction.
+    #[test]
+    fn emission_densities_match_the_sampling() {
+        use crate::geometry::Disk;
+        use crate::math::chi2::{SphereBins, chi2_sphere};
+        let world = (Vec3A::new(0.5, 0.0, 0.0), 3.0);
+        let disk = |two_sided| {
+            Light::Area(AreaLight {
+                emitter: Emitter::Disk(Disk::new(
+                    Vec3A::new(0.0, 1.0, 0.0),
+                    Vec3A::new(0.3, -1.0, 0.2).normalize(),
+                    0.5,
+                )),
+                radiance: Color::new(2.0, 1.0, 0.5),
+                texture: None,
+                two_sided,
+                object: 0,
+            })
+        };
+        let lights = [
+            Light::Point(PointLight {
+                position: Vec3A::new(0.0, 2.0, 0.0),
+                color: Color::splat(3.0),
+                falloff: None,
+            }),
+            spot(30.0, 10.0),
+            disk(false),
+            disk(true),
+            Light::Environment(Environment {
+                source: EnvironmentSource::Constant(Color::splat(0.7)),
+                visible: true,
+            }),
+        ];
+        let mut checked = 0;
+        for (k, l) in lights.iter().enumerate() {
+            let u = Vec2::new(0.3, 0.6);
+            let normal = l.sample_le(u, Vec2::new(0.2, 0.2), world).unwrap().normal;
+            let result = chi2_sphere(
+                &format!("light {k}"),
+                SphereBins::default(),
+                |v| l.sample_le(u, v, world).map(|e| e.dir),
+                |dir| l.pdf_le(normal, dir, world.1).1,
+            );
+            if let Err(e) = result {
+                panic!("{e}");
+            }
+            for i in 0..64 {
+                let v = Vec2::new((i % 8) as f32 / 8.0 + 0.05, (i / 8) as f32 / 8.0 + 0.05);
+                let Some(e) = l.sample_le(u, v, world) else {
+                    continue;
+                };
+                let (pos, dir) = l.pdf_le(e.normal, e.dir, world.1);
+                let (light, cos) = match l {
+                    Light::Area(a) => (a.radiance, e.normal.unwrap().dot(e.dir).abs()),
+                    Light::Environment(env) => (env.radiance(-e.dir), 1.0),
+                    Light::Spot(_) => continue,
+                    _ => (Color::splat(3.0), 1.0),
+                };
+                let want = light * (cos / (pos * dir));
+                assert!(
+                    (e.weight - want).abs().max_element() < 1e-3 * want.max_element(),
+                    "light {k}: {} vs {want}",
+                    e.weight
+                );
+                checked += 1;
+            }
+        }
+        assert_eq!(checked, 4 * 64);
+        let sun = Light::Directional(DirectionalLight {
+            direction: -Vec3A::Y,
+            color: Color::ONE,
+        });
+        let e = sun.sample_le(Vec2::new(0.3, 0.3), Vec2::ZERO, world).unwrap();
+        let (pos, dir) = sun.pdf_le(None, e.dir, world.1);
+        assert!((e.weight.x * pos - 1.0).abs() < 1e-5 && dir == 0.0);
     }
 }

@@ -55,6 +55,10 @@ impl Emit for PointLight {
         })
     }
 
+    fn pdf_le(&self, _normal: Option<Vec3A>, _dir: Vec3A, _radius: f32) -> (f32, f32) {
+        (1.0, crate::math::sampling::UNIFORM_SPHERE_PDF)
+    }
+
     fn position(&self) -> Option<Vec3A> {
         Some(self.position)
     }

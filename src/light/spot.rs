@@ -73,6 +73,12 @@ impl Emit for SpotLight {
         })
     }
 
+    fn pdf_le(&self, _normal: Option<Vec3A>, dir: Vec3A, _radius: f32) -> (f32, f32) {
+        let inside = dir.dot(self.direction) >= self.cos_outer;
+        let pdf = crate::math::sampling::uniform_cone_pdf(self.cos_outer);
+        (1.0, if inside { pdf } else { 0.0 })
+    }
+
     fn position(&self) -> Option<Vec3A> {
         Some(self.position)
     }

@@ -4,7 +4,7 @@
 //! [`SplatFilm`], and the picture their sum over the paths taken, in passes that a time
 //! limit may stop. The same bytes at any thread count.
 
-use super::progressive::next_pass_end;
+use super::passes::{PassDone, in_passes};
 use super::{BadSamples, RenderError, RenderOptions, Rendered, TilesDone, for_each_tile};
 use crate::film::{Film, SplatFilm};
 use crate::integrator::{LightTracer, LightView, RayStats};
@@ -49,59 +49,24 @@ pub fn render_light_for(
 ) -> Result<LightRendered, LightTraceError> {
     let start = Instant::now();
     let s = &scene.settings;
-    let camera = &scene.camera;
-    if camera.view().projection != crate::camera::Projection::Perspective {
+    if scene.camera.view().projection != crate::camera::Projection::Perspective {
         return Err(LightTraceError::Camera);
     }
-    let world = scene
-        .objects
-        .iter()
-        .filter_map(|o| o.world_bounds)
-        .reduce(|a, b| a.union(&b))
-        .map_or((crate::math::Vec3A::ZERO, 1.0), |b| {
-            (
-                (b.min + b.max) * 0.5,
-                (0.5 * (b.max - b.min).length()).max(1e-3),
-            )
-        });
-    let view = LightView {
-        camera,
-        size: (s.width, s.height),
-        world,
-    };
+    let view = LightView::of(scene);
     let splats = SplatFilm::new(s.width, s.height);
     // A film of nothing: the loop's tiles are the units of work and of progress.
     let mut film: Film<()> = Film::new(s.width, s.height);
     let grid = film.grid();
     let pixels = grid.pixels_in(None);
-    let (mut done, mut rays, mut bad) = (0u32, RayStats::default(), BadSamples::default());
-    let mut per_sample = None;
-    let mut complete = true;
-    while done < s.spp {
-        let elapsed = start.elapsed();
-        if done > 0 && time.is_some_and(|t| elapsed >= t) {
-            break;
-        }
-        let left = time.map(|t| t.saturating_sub(elapsed));
-        let end = next_pass_end(done, s.spp, per_sample, left);
-        // Progress in pixels of the whole render: the passes before, and this one's share.
-        let progress = |n: u64| {
-            let total = pixels * done as u64 + n * (end - done) as u64;
-            (options.progress)(total / s.spp.max(1) as u64)
-        };
-        let pass = RenderOptions {
-            progress: &progress,
-            ..*options
-        };
+    let done = in_passes(s.spp, time, start, pixels, options, |samples, pass| {
         let before = splats.snapshot();
-        let pass_start = Instant::now();
         let tiles = for_each_tile(
             &mut film,
-            &pass,
+            pass,
             |_| false,
             |x, y, _, (rays, _): &mut (RayStats, BadSamples)| {
                 let mut sampler = crate::sampler::Sampler::new(s.integrator.sampler, s.seed);
-                for k in done..end {
+                for k in samples.clone() {
                     sampler.start(x, y, k);
                     LightTracer.trace(scene, &view, &mut sampler, rays, &mut |px, py, c| {
                         splats.add(px, py, c)
@@ -111,27 +76,27 @@ pub fn render_light_for(
             |_, _| {},
         )?;
         let pass_done = TilesDone::gather(tiles, grid);
-        rays += pass_done.rays;
-        bad.add(pass_done.bad_samples);
-        if pass_done.tiles < grid.count() as usize {
+        let whole = pass_done.tiles == grid.count() as usize;
+        if !whole {
             // Cancelled: the pass's splats are taken back.
             splats.restore(&before);
-            complete = false;
-            break;
         }
-        per_sample = Some(pass_start.elapsed() / (end - done));
-        done = end;
-    }
+        Ok(PassDone {
+            rays: pass_done.rays,
+            bad: pass_done.bad_samples,
+            whole,
+        })
+    })?;
     Ok(LightRendered {
         rendered: Rendered {
-            image: splats.image(1.0 / done.max(1) as f32),
-            rays,
-            bad_samples: bad,
-            tiles_done: if complete { grid.count() } else { 0 },
+            image: splats.image(1.0 / done.spp.max(1) as f32),
+            rays: done.rays,
+            bad_samples: done.bad,
+            tiles_done: if done.complete { grid.count() } else { 0 },
             tiles_total: grid.count(),
-            pixels_rendered: pixels * done as u64 / s.spp.max(1) as u64,
+            pixels_rendered: pixels * done.spp as u64 / s.spp.max(1) as u64,
         },
-        spp: done,
+        spp: done.spp,
     })
 }
 

@@ -12,10 +12,12 @@ use std::sync::Mutex;
 use std::sync::atomic::AtomicBool;
 
 mod aov;
+pub mod bdpt;
 pub mod estimate;
 pub mod light;
 pub mod lpe;
 pub mod pass;
+mod passes;
 mod pixel;
 pub mod progressive;
 mod tiles;

@@ -102,6 +102,9 @@ pub enum RunError {
     /// A scene light tracing cannot render.
     #[error(transparent)]
     Light(#[from] super::light::LightTraceError),
+    /// A scene bidirectional path tracing cannot render.
+    #[error(transparent)]
+    Bdpt(#[from] super::bdpt::BdptError),
     /// Light path expressions this render cannot give.
     #[error("{error} (help: {help})", help = .0.help(), error = .0)]
     Lpe(#[from] RenderLpeError),
@@ -141,6 +144,10 @@ pub fn run(scene: &Scene, options: &RunOptions) -> Result<Finished, RunError> {
     }
     if s.integrator.kind == crate::scene::IntegratorKind::Light {
         let r = super::light::render_light_for(scene, &whole, options.time)?;
+        return Ok(Finished::whole(r.rendered, r.spp, vec![]));
+    }
+    if s.integrator.kind == crate::scene::IntegratorKind::Bdpt {
+        let r = super::bdpt::render_bdpt_for(scene, &whole, options.time)?;
         return Ok(Finished::whole(r.rendered, r.spp, vec![]));
     }
     if !integrator.uses_sampler() {

@@ -21,7 +21,7 @@ pub use assets::AssetCache;
 pub use detail::UvFrame;
 pub use diag::{DocPath, Format, Problem, SceneDiagnostic, SceneError, Seg, did_you_mean};
 pub use footprint::{RayDifferentials, SurfacePatch};
-pub use format::{IntegratorKind, schema, schema_of_types};
+pub use format::{IntegratorKind, MisHeuristic, schema, schema_of_types};
 pub use limits::{Limits, MemoryEstimate, available_memory, memory_estimate};
 pub use load::{
     Animation, MAX_FRAMES, MAX_MAGNITUDE, load, load_frame, load_str, load_str_frame,

@@ -41,6 +41,8 @@ pub struct IntegratorSettings {
     pub rr_depth: u32,
     /// The most a sample may add to a pixel, per channel; `None`: no clamp.
     pub clamp: Option<f32>,
+    /// How bidirectional path tracing weighs its strategies.
+    pub mis: super::MisHeuristic,
 }
 
 impl Default for IntegratorSettings {
@@ -50,6 +52,7 @@ impl Default for IntegratorSettings {
             sampler: crate::sampler::SamplerKind::Sobol,
             rr_depth: 5,
             clamp: None,
+            mis: super::MisHeuristic::Power,
         }
     }
 }

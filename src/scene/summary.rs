@@ -29,11 +29,11 @@ impl Scene {
                     "the scene has no lights Whitted uses: only ambient light will show{others}"
                 ))
             }
-            IntegratorKind::Path => (!emits
+            IntegratorKind::Path | IntegratorKind::Bdpt => (!emits
                 && self.background == Color::ZERO
                 && self.environment().is_none())
             .then(|| {
-                "the scene has no lights and a black background: the path tracer's image will be black"
+                "the scene has no lights and a black background: the image will be black"
                     .into()
             }),
             IntegratorKind::Light => (!emits && self.environment().is_none()).then(|| {

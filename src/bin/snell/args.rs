@@ -29,7 +29,7 @@ pub(crate) struct SamplingArgs {
     /// to it.
     #[arg(long, allow_negative_numbers = true, value_parser = size, value_name = "N")]
     pub(crate) spp: Option<u32>,
-    /// The integrator, `whitted`, `path` or `light` (overrides the scene's `[integrator] type`).
+    /// The integrator, `whitted`, `path`, `light` or `bdpt` (overrides the scene's `[integrator] type`).
     #[arg(long, value_name = "NAME", value_parser = parse_integrator)]
     pub(crate) integrator: Option<IntegratorKind>,
     /// The path tracer's sampler, `sobol` or `independent` (overrides the scene).
@@ -100,8 +100,9 @@ fn parse_integrator(s: &str) -> Result<IntegratorKind, String> {
         "whitted" => Ok(IntegratorKind::Whitted),
         "path" => Ok(IntegratorKind::Path),
         "light" => Ok(IntegratorKind::Light),
+        "bdpt" => Ok(IntegratorKind::Bdpt),
         _ => Err(format!(
-            "`{s}` is not an integrator: use whitted, path or light"
+            "`{s}` is not an integrator: use whitted, path, light or bdpt"
         )),
     }
 }

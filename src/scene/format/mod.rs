@@ -17,7 +17,7 @@ pub use animation::{
     AnimationDef, CameraKeyDef, InterpolationDef, KeyTimeDef, Keyed, LightKeyDef, ObjectKeyDef,
 };
 pub use environment::EnvironmentDef;
-pub use integrator::{IntegratorDef, IntegratorKind, SamplerDef};
+pub use integrator::{IntegratorDef, IntegratorKind, MisHeuristic, SamplerDef};
 pub use material::{MaterialDef, MaterialKind};
 pub use object::*;
 pub use texture::{ColorSpaceDef, MappingDef, TextureDef, WrapDef};

@@ -78,8 +78,23 @@ impl Builder<'_> {
                 "must be 1 or more (the camera ray is depth 1)",
             );
         }
+        if d.kind == IntegratorKind::Bdpt && d.clamp.is_some() {
+            self.error_help(
+                path.key("clamp"),
+                "bdpt does not clamp: a clamp cuts a sample's colour, and bidirectional samples add to many pixels",
+                "remove `clamp`, or render with `type = \"path\"`",
+            );
+        }
+        if d.kind != IntegratorKind::Bdpt && d.mis.is_some() {
+            self.error_help(
+                path.key("mis"),
+                "only `type = \"bdpt\"` weighs strategies by `mis`",
+                "remove `mis`, or set `type = \"bdpt\"`",
+            );
+        }
         IntegratorSettings {
             kind: d.kind,
+            mis: d.mis.unwrap_or_default(),
             sampler: match d.sampler {
                 SamplerDef::Sobol => SamplerKind::Sobol,
                 SamplerDef::Independent => SamplerKind::Independent,

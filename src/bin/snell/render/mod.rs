@@ -157,8 +157,10 @@ fn render_job(
             Some("render with --integrator path (or [integrator] type = \"path\")"),
         );
     }
-    if kind == snell::scene::IntegratorKind::Light
-        && let Err(code) = light::check(args)
+    if matches!(
+        kind,
+        snell::scene::IntegratorKind::Light | snell::scene::IntegratorKind::Bdpt
+    ) && let Err(code) = light::check(args, kind)
     {
         return code;
     }
@@ -232,8 +234,11 @@ fn render_job(
             .is_none_or(|c| c.film.is_some() || c.tiles.is_empty());
     let outcome = if let Some(set) = &lpe {
         lpe::render_with_lpe(&run, set)
-    } else if kind == snell::scene::IntegratorKind::Light {
-        light::render_light(&run, args.time)
+    } else if matches!(
+        kind,
+        snell::scene::IntegratorKind::Light | snell::scene::IntegratorKind::Bdpt
+    ) {
+        light::render_splatted(kind, &run, args.time)
     } else if by_passes {
         passes::render_passes(&run, resumed.and_then(|c| c.film), args.time)
     } else {

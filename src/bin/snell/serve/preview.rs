@@ -296,6 +296,7 @@ fn load(shared: &Shared) -> bool {
                 // The preview has no light tracing: the path tracer, which agrees with it,
                 // stands in.
                 IntegratorKind::Light => "path (for light)",
+                IntegratorKind::Bdpt => "path (for bdpt)",
             };
             s.target_spp = scene.settings.spp;
             s.scene = Some(Arc::new(scene));
