@@ -35,6 +35,8 @@ pub struct Filter {
     /// that are never negative. Mitchell (B = C = 1/3) on its native support [0, 2] is
     /// (x - 2)(-7x^2 + 22x - 16) / 18 past 1, negative between 8/7 and 2: 4/7 of the radius.
     negative_beyond: f32,
+    /// The 1D weight's integral over the support (signed).
+    integral: f32,
 }
 
 const INVERSE: usize = 257;
@@ -59,14 +61,19 @@ impl Filter {
                 FilterKind::Mitchell => radius * 4.0 / 7.0,
                 _ => f32::INFINITY,
             },
+            integral: 1.0,
         };
         // Piecewise-constant density of |w| over BINS bins, then its inverse CDF.
         let bin = 2.0 * radius / BINS as f32;
         let mut cdf = vec![0.0f64; BINS + 1];
+        let mut integral = 0.0f64;
         for b in 0..BINS {
             let x = -radius + (b as f32 + 0.5) * bin;
-            cdf[b + 1] = cdf[b] + filter.weight_1d(x).abs() as f64;
+            let w = filter.weight_1d(x) as f64;
+            cdf[b + 1] = cdf[b] + w.abs();
+            integral += w * bin as f64;
         }
+        filter.integral = integral as f32;
         let total = cdf[BINS];
         let mut b = 0;
         for (k, slot) in filter.inverse.iter_mut().enumerate() {
@@ -131,6 +138,14 @@ impl Filter {
     #[inline]
     pub fn weight(&self, dx: f32, dy: f32) -> f32 {
         self.weight_1d(dx) * self.weight_1d(dy)
+    }
+
+    /// The share of a pixel's value that light arriving at offset `(dx, dy)` from its centre
+    /// has: the weight over the filter's integral (what a splat gives each pixel near it; the
+    /// camera's samples are placed by the filter instead, to the same effect).
+    #[inline]
+    pub fn splat_weight(&self, dx: f32, dy: f32) -> f32 {
+        self.weight(dx, dy) / (self.integral * self.integral)
     }
 
     /// Samples are placed by the filter, not weighted by it, so this is off the hot path:

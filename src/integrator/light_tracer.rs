@@ -31,8 +31,11 @@ pub struct LightView<'a> {
     pub camera: &'a Camera,
     /// The film's width and height, in pixels.
     pub size: (u32, u32),
-    /// The scene's bounding sphere: centre and radius.
+    /// The sphere that bounds the scene's finite objects: centre and radius.
     pub world: (Vec3A, f32),
+    /// Whether some object is unbounded (an infinite plane): then a ray from a light far
+    /// away may start on the far side of it, and is first tested against it.
+    pub open: bool,
 }
 
 impl<'a> LightView<'a> {
@@ -53,7 +56,21 @@ impl<'a> LightView<'a> {
             camera: &scene.camera,
             size: (scene.settings.width, scene.settings.height),
             world,
+            open: scene.objects.iter().any(|o| o.world_bounds.is_none()),
         }
+    }
+
+    /// Whether light `e` from a light far away (the environment, a directional light) that
+    /// starts on the disk of [`LightView::world`] is blocked before it gets there: by an
+    /// unbounded object between the disk and the light (the far side of an infinite
+    /// ground, for light from below the horizon).
+    pub fn blocked_from_afar(&self, scene: &Scene, e: &crate::light::Emission) -> bool {
+        self.open
+            && scene.occluded(
+                &Ray::new(e.origin, -e.dir),
+                f32::INFINITY,
+                crate::accel::Skip::NONE,
+            )
     }
 }
 
@@ -77,6 +94,11 @@ impl LightTracer {
         let Some(e) = light.sample_le(Vec2::new(a, b), Vec2::new(c, d), view.world) else {
             return;
         };
+        if matches!(light, Light::Environment(_) | Light::Directional(_))
+            && view.blocked_from_afar(scene, &e)
+        {
+            return;
+        }
         // An area light seen by the eye: its point joined to the eye.
         if let (Light::Area(area), Some(n)) = (light, e.normal)
             && let Some(eye) =

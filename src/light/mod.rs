@@ -311,7 +311,9 @@ mod tests {
             direction: -Vec3A::Y,
             color: Color::ONE,
         });
-        let e = sun.sample_le(Vec2::new(0.3, 0.3), Vec2::ZERO, world).unwrap();
+        let e = sun
+            .sample_le(Vec2::new(0.3, 0.3), Vec2::ZERO, world)
+            .unwrap();
         let (pos, dir) = sun.pdf_le(None, e.dir, world.1);
         assert!((e.weight.x * pos - 1.0).abs() < 1e-5 && dir == 0.0);
     }

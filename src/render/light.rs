@@ -53,7 +53,7 @@ pub fn render_light_for(
         return Err(LightTraceError::Camera);
     }
     let view = LightView::of(scene);
-    let splats = SplatFilm::new(s.width, s.height);
+    let splats = SplatFilm::new(s.width, s.height, &s.filter);
     // A film of nothing: the loop's tiles are the units of work and of progress.
     let mut film: Film<()> = Film::new(s.width, s.height);
     let grid = film.grid();
@@ -87,9 +87,14 @@ pub fn render_light_for(
             whole,
         })
     })?;
+    let mut image = splats.image(1.0 / done.spp.max(1) as f32);
+    for p in &mut image.pixels {
+        // A filter's negative lobes may take a pixel below 0: cut there, as the camera's are.
+        *p = p.max(crate::math::Color::ZERO);
+    }
     Ok(LightRendered {
         rendered: Rendered {
-            image: splats.image(1.0 / done.spp.max(1) as f32),
+            image,
             rays: done.rays,
             bad_samples: done.bad,
             tiles_done: if done.complete { grid.count() } else { 0 },

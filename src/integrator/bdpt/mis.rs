@@ -72,8 +72,24 @@ pub(super) fn weight(
     let cam_delta = |i: usize| i != t - 1 && camera[i].delta;
     let mut r = 1.0f32;
     for i in (1..t).rev() {
-        let fwd = if i == t - 1 { pt.pdf_fwd } else { camera[i].pdf_fwd };
-        r *= remap(cam_rev(i)) / remap(fwd);
+        let fwd = if i == t - 1 {
+            pt.pdf_fwd
+        } else {
+            camera[i].pdf_fwd
+        };
+        // A delta's density is 0 on both of its sides, where the strategies that cross it
+        // count it as 1 (it cancels); any other 0 is a strategy that cannot make the path.
+        let rev = cam_rev(i);
+        let rev = if i + 1 < t && cam_delta(i + 1) {
+            remap(rev)
+        } else {
+            rev
+        };
+        let fwd = if cam_delta(i - 1) { remap(fwd) } else { fwd };
+        if fwd == 0.0 {
+            break;
+        }
+        r *= rev / fwd;
         if !cam_delta(i) && !cam_delta(i - 1) {
             sum += power(r);
         }
@@ -95,12 +111,23 @@ pub(super) fn weight(
     let light_delta = |i: usize| i != s - 1 && light_at(i).delta;
     let mut r = 1.0f32;
     for i in (0..s).rev() {
-        r *= remap(light_rev(i)) / remap(light_at(i).pdf_fwd);
         let before_delta = if i > 0 {
             light_delta(i - 1)
         } else {
             light_at(0).delta_light(scene)
         };
+        let rev = light_rev(i);
+        let rev = if i + 1 < s && light_delta(i + 1) {
+            remap(rev)
+        } else {
+            rev
+        };
+        let fwd = light_at(i).pdf_fwd;
+        let fwd = if before_delta { remap(fwd) } else { fwd };
+        if fwd == 0.0 {
+            break;
+        }
+        r *= rev / fwd;
         if !light_delta(i) && !before_delta {
             sum += power(r);
         }

@@ -75,7 +75,9 @@ impl Bdpt {
         let max_depth = scene.settings.max_depth as usize;
         let mut l = Color::ZERO;
         for t in 1..=camera.len() {
-            for s in 0..=light.len() {
+            // `s = 1` samples a light of its own: it runs even where the light subpath is
+            // empty (its light sent nothing its way, or was blocked).
+            for s in 0..=light.len().max(1) {
                 if s + t < 2 || (s == 1 && t == 1) || s + t - 1 > max_depth {
                     continue;
                 }

@@ -208,7 +208,16 @@ impl Vertex {
         let Some(i) = self.light() else { return 0.0 };
         let w = self.direction_to(next);
         let pdf = if self.infinite() {
-            1.0 / (std::f32::consts::PI * ctx.view.world.1 * ctx.view.world.1)
+            // Over the disk of the scene's bounding sphere that faces the light: a point
+            // outside the cylinder it sweeps (an infinite plane's far parts) no light path
+            // reaches.
+            let (centre, r) = ctx.view.world;
+            let v = next.point - centre;
+            let across = (v - w * v.dot(w)).length_squared();
+            if across > r * r || v.dot(w) < -r {
+                return 0.0;
+            }
+            1.0 / (std::f32::consts::PI * r * r)
         } else {
             let d2 = (next.point - self.point).length_squared();
             if d2 == 0.0 {

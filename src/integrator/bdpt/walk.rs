@@ -55,6 +55,9 @@ pub(super) fn light_path(
         light,
         crate::light::Light::Environment(_) | crate::light::Light::Directional(_)
     );
+    if infinite && ctx.view.blocked_from_afar(scene, &e) {
+        return;
+    }
     let kind = Kind::Light {
         light: i,
         normal: e.normal,
@@ -76,7 +79,9 @@ pub(super) fn light_path(
     };
     path.push(start);
     let beta = emission / p_light;
-    let origin = e.normal.map_or(e.origin, |n| offset_ray_origin(e.origin, n));
+    let origin = e
+        .normal
+        .map_or(e.origin, |n| offset_ray_origin(e.origin, n));
     let walk = Walk {
         side: Side::Light,
         max: ctx.scene.settings.max_depth.saturating_sub(1),
@@ -85,7 +90,15 @@ pub(super) fn light_path(
     if walk.max == 0 {
         return;
     }
-    walk.run(ctx, Ray::new(origin, e.dir), beta, pdf_dir, sampler, rays, path);
+    walk.run(
+        ctx,
+        Ray::new(origin, e.dir),
+        beta,
+        pdf_dir,
+        sampler,
+        rays,
+        path,
+    );
     // A light far away makes its first surface by the point of its disk: that density,
     // per unit area of the surface.
     if infinite && let Some(v) = path.get_mut(1) {
@@ -163,7 +176,12 @@ impl Walk {
                 light: scene.area_light_at(&hit),
                 side: self.side,
             };
-            let mut v = Vertex::new(Kind::Surface(Box::new(surface)), hit.point, hit.normal, beta);
+            let mut v = Vertex::new(
+                Kind::Surface(Box::new(surface)),
+                hit.point,
+                hit.normal,
+                beta,
+            );
             v.le = le;
             let prev = path.last().expect("a walk starts from a vertex");
             v.pdf_fwd = prev.to_area(pdf, &v);

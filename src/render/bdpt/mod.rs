@@ -1,14 +1,15 @@
 //! A bidirectionally path-traced render ([`crate::integrator::Bdpt`]): each pixel's camera
 //! samples, their strategies with more than one camera vertex added to the pixel (through
 //! the filter, as the path tracer's are), and the strategies that join a light subpath to
-//! the eye splatted on a [`SplatFilm`] where they land (in the pixel they land in, a box);
-//! the picture is the two together, in passes that a time limit may stop. The same bytes
+//! the eye splatted on a [`SplatFilm`] where they land (spread by the same filter); the
+//! picture is the two together, in passes that a time limit may stop. The same bytes
 //! at any thread count.
 
 use super::passes::{PassDone, in_passes};
 use super::{PixelJob, RenderError, RenderOptions, Rendered, TilesDone, for_each_tile};
 use crate::film::{Film, Image, SplatFilm};
 use crate::integrator::{Bdpt, LightView, Path, Paths, RayStats};
+use crate::math::Color;
 use crate::render::BadSamples;
 use crate::scene::Scene;
 use std::time::{Duration, Instant};
@@ -20,7 +21,9 @@ pub enum BdptError {
     #[error(transparent)]
     Render(#[from] RenderError),
     /// A camera light paths cannot reach.
-    #[error("bdpt needs a perspective camera (not an orthographic one): its light paths end at the eye")]
+    #[error(
+        "bdpt needs a perspective camera (not an orthographic one): its light paths end at the eye"
+    )]
     Camera,
 }
 
@@ -62,7 +65,7 @@ pub fn render_bdpt_for(
         return Err(BdptError::Camera);
     }
     let view = LightView::of(scene);
-    let splats = SplatFilm::new(s.width, s.height);
+    let splats = SplatFilm::new(s.width, s.height, &s.filter);
     let mut film: Film = Film::new(s.width, s.height);
     let grid = film.grid();
     let pixels = grid.pixels_in(None);
@@ -96,7 +99,10 @@ pub fn render_bdpt_for(
             },
             |_, _| {},
         )?;
-        let stats = tiles.into_iter().map(|(i, t)| (i, (t.rays, t.bad))).collect();
+        let stats = tiles
+            .into_iter()
+            .map(|(i, t)| (i, (t.rays, t.bad)))
+            .collect();
         let pass_done = TilesDone::gather(stats, grid);
         let whole = pass_done.tiles == grid.count() as usize;
         if !whole {
@@ -113,7 +119,9 @@ pub fn render_bdpt_for(
     let mut image: Image = film.image();
     let light = splats.image(1.0 / done.spp.max(1) as f32);
     for (p, l) in image.pixels.iter_mut().zip(&light.pixels) {
-        *p += *l;
+        // A filter's negative lobes may take a pixel below 0, which the camera's part of it
+        // is cut at too.
+        *p = (*p + *l).max(Color::ZERO);
     }
     Ok(BdptRendered {
         rendered: Rendered {

@@ -100,7 +100,10 @@ fn integrator_flags_choose_the_path_tracer_and_refuse_bad_values() {
     let o = expect(&["render", &scene, "--spp", "5", "-o", "w.png"], &dir, 2);
     assert!(stderr(&o).contains("square"), "{}", stderr(&o));
     let cases: [(&[&str], &str); 4] = [
-        (&["--integrator", "pathh"], "use whitted, path, light or bdpt"),
+        (
+            &["--integrator", "pathh"],
+            "use whitted, path, light or bdpt",
+        ),
         (&["--sampler", "halton"], "use sobol or independent"),
         (&["--clamp", "-1"], "positive number"),
         (&["--clamp", "inf"], "positive number"),
