@@ -137,4 +137,6 @@ pub fn render_bdpt_for(
 }
 
 #[cfg(test)]
+mod caustic_tests;
+#[cfg(test)]
 mod tests;

@@ -245,3 +245,27 @@ fn a_render_stopped_by_time_is_the_render_of_its_samples() {
         );
     }
 }
+
+/// Every BSDF, the deltas too, under area lights (scenes/materials.toml: smooth and rough
+/// metals, clear and rough glass, plastics, a thin pane; and a Phong ball that mirrors part
+/// of its light and a Phong glass one): bidirectional and path-traced pictures agree block
+/// by block within noise.
+#[test]
+fn every_material_is_the_path_traced_one() {
+    let text = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/scenes/materials.toml"
+    ))
+    .unwrap();
+    let make = |seed| sized(scene(&text), 24, 64, seed);
+    assert_unbiased("materials.toml", z_test(make, 64, 256), 36);
+    let phong = lit_by(
+        "[materials.shiny]\ncolor = [0.2, 0.4, 0.9]\ndiffuse = 0.6\nspecular = 1\nshininess = 40\nreflectivity = 0.4\n\
+         [materials.clear]\ncolor = 1\ndiffuse = 0\nspecular = 1\nshininess = 50\ntransparency = 1\nior = 1.5\n\
+         [[objects]]\ntype = \"sphere\"\ncenter = [0, 0.35, 1.2]\nradius = 0.35\nmaterial = \"shiny\"\n\
+         [[objects]]\ntype = \"sphere\"\ncenter = [-0.2, 1.2, 0.6]\nradius = 0.3\nmaterial = \"clear\"\n\
+         [[objects]]\ntype = \"sphere\"\ncenter = [1, 2.5, 1.5]\nradius = 0.3\nmaterial = \"lamp\"",
+    );
+    let make = |seed| sized(scene(&phong), 16, 64, seed);
+    assert_unbiased("Phong", z_test(make, 64, 256), 16);
+}
