@@ -135,6 +135,134 @@ impl PathExplained {
     }
 }
 
+/// A bidirectional sample explained: its pixel and index, where it lies on the film, the
+/// lengths of its two subpaths, and every strategy that carried light, with its weight.
+#[derive(Clone, Debug)]
+pub struct BdptExplained {
+    /// The pixel.
+    pub pixel: (u32, u32),
+    /// The sample's index.
+    pub sample: u32,
+    /// Where it lies on the film.
+    pub film: (f32, f32),
+    /// What the sample adds to its own pixel (the strategies with more than one camera
+    /// vertex).
+    pub color: Color,
+    /// Vertices of the eye's subpath (the eye included) and of the light's.
+    pub lengths: (usize, usize),
+    /// The strategies that carried light, in the order they were joined.
+    pub strategies: Vec<crate::integrator::Strategy>,
+    /// The rays traced.
+    pub rays: RayStats,
+}
+
+/// Sample `k` of pixel `(x, y)` under bidirectional path tracing, the same random numbers
+/// as the render gives it, with each strategy it joined.
+pub fn bdpt(scene: &Scene, (x, y): (u32, u32), k: u32) -> BdptExplained {
+    let s = &scene.settings;
+    let mut sampler = crate::sampler::Sampler::new(s.integrator.sampler, s.seed);
+    let (px, py, _) = crate::render::start_sample(s, &mut sampler, x, y, k);
+    let camera = scene.camera.raster(s.width, s.height);
+    let ray = crate::render::camera_ray(&camera, &mut sampler, px, py);
+    let mut rays = RayStats::default();
+    let mut paths = crate::integrator::Paths::default();
+    let mut strategies = vec![];
+    let view = crate::integrator::LightView::of(scene);
+    let color = crate::integrator::Bdpt.sample_with(
+        scene,
+        &view,
+        &ray,
+        &mut sampler,
+        &mut paths,
+        &mut rays,
+        &mut |_, _, _| {},
+        &mut |st| strategies.push(*st),
+    );
+    BdptExplained {
+        pixel: (x, y),
+        sample: k,
+        film: (px, py),
+        color,
+        lengths: paths.lengths(),
+        strategies,
+        rays,
+    }
+}
+
+impl BdptExplained {
+    /// `explain --json`'s document, with the scene file's name as `scene_path` gives it.
+    pub fn to_json(&self, scene: &Scene, scene_path: &std::path::Path) -> Value {
+        let s = &scene.settings;
+        let r = &self.rays;
+        let strategies: Vec<Value> = self
+            .strategies
+            .iter()
+            .map(|st| {
+                json!({
+                    "s": st.s,
+                    "t": st.t,
+                    "unweighted": st.light.to_array(),
+                    "weight": st.weight,
+                    "contribution": (st.light * st.weight).to_array(),
+                    "lands_at": st.film.map(|(x, y)| [x, y]),
+                })
+            })
+            .collect();
+        json!({
+            "scene": scene_path.display().to_string(),
+            "integrator": "bdpt",
+            "mis": format!("{:?}", s.integrator.mis).to_lowercase(),
+            "image": [s.width, s.height],
+            "pixel": [self.pixel.0, self.pixel.1],
+            "sample": self.sample,
+            "film_position": [self.film.0, self.film.1],
+            "color": self.color.to_array(),
+            "camera_vertices": self.lengths.0,
+            "light_vertices": self.lengths.1,
+            "rays_traced": { "camera": r.camera, "secondary": r.secondary, "shadow": r.shadow },
+            "strategies": strategies,
+        })
+    }
+
+    /// The strategies as a table: `(s, t)`, what each strategy is, its light before and
+    /// after its weight, and where a splat lands.
+    pub fn to_text(&self) -> String {
+        use std::fmt::Write;
+        let mut out = String::new();
+        let (c, l) = self.lengths;
+        let _ = writeln!(
+            out,
+            "  the eye's subpath has {c} vertices (the eye included), the light's {l}; each (s, t) joins s of the light's to t of the eye's"
+        );
+        let rgb = |c: Color| format!("({:.4}, {:.4}, {:.4})", c.x, c.y, c.z);
+        for st in &self.strategies {
+            let kind = match (st.s, st.t) {
+                (0, _) => "the eye's path found the light",
+                (1, _) => "a light sampled from the eye's path",
+                (_, 1) => "the light's path joined to the eye",
+                _ => "the two paths joined",
+            };
+            let lands = match st.film {
+                Some((x, y)) => format!(", lands at ({x:.1}, {y:.1})"),
+                None => String::new(),
+            };
+            let _ = writeln!(
+                out,
+                "  (s={}, t={}) {kind}: light {} x weight {:.4} = {}{lands}",
+                st.s,
+                st.t,
+                rgb(st.light),
+                st.weight,
+                rgb(st.light * st.weight)
+            );
+        }
+        if self.strategies.is_empty() {
+            let _ = writeln!(out, "  no strategy carried light");
+        }
+        out
+    }
+}
+
 /// What the preview shows for a click on pixel `(x, y)`: the path of sample 0 under the path
 /// tracer (and under light tracing, which has no camera paths), the ray through the pixel's centre under Whitted (at most `max_rays` of its
 /// tree), each hit point with its place on the picture ([`place_on_picture`]); `None` when

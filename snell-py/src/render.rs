@@ -26,8 +26,9 @@ fn integrator(name: &str) -> PyResult<IntegratorKind> {
         "whitted" => Ok(IntegratorKind::Whitted),
         "path" => Ok(IntegratorKind::Path),
         "light" => Ok(IntegratorKind::Light),
+        "bdpt" => Ok(IntegratorKind::Bdpt),
         other => Err(errors::value(format!(
-            "integrator must be \"whitted\", \"path\" or \"light\", not {other:?}"
+            "integrator must be \"whitted\", \"path\", \"light\" or \"bdpt\", not {other:?}"
         ))),
     }
 }

@@ -110,6 +110,7 @@ pub fn integrator_name(kind: snell::scene::IntegratorKind) -> &'static str {
         snell::scene::IntegratorKind::Whitted => "whitted",
         snell::scene::IntegratorKind::Path => "path",
         snell::scene::IntegratorKind::Light => "light",
+        snell::scene::IntegratorKind::Bdpt => "bdpt",
     }
 }
 

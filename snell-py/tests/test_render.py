@@ -182,3 +182,11 @@ def test_light_tracing_from_python_agrees_with_the_path_tracer(repo):
     assert abs(light.mean() - path.mean()) < 0.03 * path.mean()
     with pytest.raises(ValueError, match="\"light\""):
         snell.render(repo / "scenes/cornell.toml", integrator="lite", **args)
+
+
+def test_bdpt_from_python_agrees_with_the_path_tracer(repo):
+    args = dict(width=16, height=16, spp=256, seed=1)
+    bdpt = snell.render(repo / "scenes/cornell.toml", integrator="bdpt", **args)
+    path = snell.render(repo / "scenes/cornell.toml", integrator="path", **args)
+    assert bdpt.shape == (16, 16, 3)
+    assert abs(bdpt.mean() - path.mean()) < 0.03 * path.mean()

@@ -9,7 +9,7 @@ mod path;
 pub mod path_explain;
 mod whitted;
 
-pub use bdpt::{Bdpt, Paths};
+pub use bdpt::{Bdpt, Paths, Strategy};
 pub use light_tracer::{LightTracer, LightView};
 pub use path::Path;
 pub use whitted::Whitted;

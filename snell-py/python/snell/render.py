@@ -76,7 +76,8 @@ def render(
 ) -> Union[Image, Dict[str, Any]]:
     """Renders `scene` (a `Scene` or a scene file's path) as `snell render` would, with the
     settings given here in place of the scene's: samples per pixel, seed, size, integrator
-    (`"whitted"` or `"path"`), and for the path tracer `time`, seconds after which it stops
+    (`"whitted"`, `"path"`, `"light"` or `"bdpt"`), and for the path tracer, light tracing
+    and bdpt `time`, seconds after which it stops
     at the end of a pass. `threads` defaults to every core. The interpreter's lock is
     released while it renders.
 

@@ -75,6 +75,9 @@ pub(crate) fn explain(args: ExplainArgs) -> ExitCode {
             at
         }
     };
+    if s.integrator.kind == snell::scene::IntegratorKind::Bdpt {
+        return explain_bdpt(&args, &scene, args.sample.unwrap_or(0));
+    }
     if path {
         return explain_path(&args, &scene, args.sample.unwrap_or(0));
     }
@@ -171,6 +174,45 @@ fn explain_path(args: &ExplainArgs, scene: &snell::Scene, k: u32) -> ExitCode {
         color.x,
         color.y,
         color.z
+    );
+    ExitCode::SUCCESS
+}
+
+/// `explain` of a bidirectional sample: every strategy that carried light, with its weight.
+fn explain_bdpt(args: &ExplainArgs, scene: &snell::Scene, k: u32) -> ExitCode {
+    let s = &scene.settings;
+    let (x, y) = args.pixel;
+    let explained = snell::explain_pixel::bdpt(scene, (x, y), k);
+    if args.json {
+        match serde_json::to_string_pretty(&explained.to_json(scene, &args.scene)) {
+            Ok(text) => outln!("{text}"),
+            Err(e) => {
+                eprintln!("error: {e}");
+                return ExitCode::from(1);
+            }
+        }
+        return ExitCode::SUCCESS;
+    }
+    let (px, py) = explained.film;
+    outln!(
+        "pixel {x},{y} of {} ({} x {}), bidirectional sample {k} of {}, film position ({px}, {py}), {:?} heuristic:",
+        args.scene.display(),
+        s.width,
+        s.height,
+        s.spp,
+        s.integrator.mis
+    );
+    out!("{}", explained.to_text());
+    let (r, c) = (&explained.rays, explained.color);
+    outln!(
+        "{} traced ({} camera, {}, {} shadow); the sample adds ({}, {}, {}) to its pixel in linear RGB, and each light path joined to the eye where it lands",
+        crate::count(r.camera + r.secondary + r.shadow, "ray"),
+        r.camera,
+        crate::count(r.secondary, "bounce"),
+        r.shadow,
+        c.x,
+        c.y,
+        c.z
     );
     ExitCode::SUCCESS
 }

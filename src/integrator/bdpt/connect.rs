@@ -161,7 +161,7 @@ fn from_light(ctx: &Context, pt: &Vertex, sampler: &mut Sampler, rays: &mut RayS
             (kind, point, Vec3A::ZERO, ls.radiance, ls.pdf)
         }
     };
-    if radiance == Color::ZERO || !(pdf > 0.0) || !pdf.is_finite() {
+    if radiance == Color::ZERO || pdf.is_nan() || pdf <= 0.0 || !pdf.is_finite() {
         return Joined::none();
     }
     let mut sampled = Vertex::new(kind, point, ng, radiance / (pdf * choice));

@@ -49,11 +49,35 @@ pub struct Paths {
     light: Vec<vertex::Vertex>,
 }
 
+/// One strategy of a sample, for `snell explain` and strategy images: `s` vertices of the
+/// light's subpath joined to `t` of the eye's.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Strategy {
+    /// Vertices from the light (0: the eye's path found a light itself).
+    pub s: usize,
+    /// Vertices from the eye, the eye included (1: joined to the eye, a splat).
+    pub t: usize,
+    /// The light the joined path carries, before its weight.
+    pub light: Color,
+    /// Its multiple importance sampling weight.
+    pub weight: f32,
+    /// Where it lands on the film (pixels), for `t = 1`; the sample's own pixel otherwise.
+    pub film: Option<(f32, f32)>,
+}
+
+impl Paths {
+    /// The vertices of the last sample's subpaths: the eye's (the eye included), the light's.
+    pub fn lengths(&self) -> (usize, usize) {
+        (self.camera.len(), self.light.len())
+    }
+}
+
 impl Bdpt {
     /// The light of one camera sample along `ray` (a camera ray), with random numbers from
     /// `sampler` (started at this sample): the strategies with more than one camera vertex,
     /// for the pixel; each that joins a light vertex to the eye goes to `splat(x, y,
     /// colour)` (film position in pixels), for the pixel it lands in.
+    #[allow(clippy::too_many_arguments)]
     pub fn sample(
         &self,
         scene: &Scene,
@@ -63,6 +87,22 @@ impl Bdpt {
         paths: &mut Paths,
         rays: &mut RayStats,
         splat: &mut impl FnMut(f32, f32, Color),
+    ) -> Color {
+        self.sample_with(scene, view, ray, sampler, paths, rays, splat, &mut |_| {})
+    }
+
+    /// [`Bdpt::sample`], telling `each` of every strategy that carried light.
+    #[allow(clippy::too_many_arguments)]
+    pub fn sample_with(
+        &self,
+        scene: &Scene,
+        view: &LightView,
+        ray: &Ray,
+        sampler: &mut Sampler,
+        paths: &mut Paths,
+        rays: &mut RayStats,
+        splat: &mut impl FnMut(f32, f32, Color),
+        each: &mut impl FnMut(&Strategy),
     ) -> Color {
         let ctx = Context {
             scene,
@@ -85,8 +125,15 @@ impl Bdpt {
                 if joined.light == Color::ZERO {
                     continue;
                 }
-                let w = mis::weight(&ctx, light, camera, joined.sampled.as_ref(), s, t);
-                let c = joined.light * w;
+                let weight = mis::weight(&ctx, light, camera, joined.sampled.as_ref(), s, t);
+                each(&Strategy {
+                    s,
+                    t,
+                    light: joined.light,
+                    weight,
+                    film: joined.film,
+                });
+                let c = joined.light * weight;
                 match joined.film {
                     Some((x, y)) => splat(x, y, c),
                     None => l += c,

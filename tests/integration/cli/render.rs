@@ -456,9 +456,9 @@ fn a_finished_render_says_it_removed_its_checkpoint() {
     assert!(stderr(&o).is_empty(), "{}", stderr(&o));
 }
 
-/// `--integrator light`: the Cornell box light traced to an EXR whose mean is the path
-/// tracer's within a few percent; the flags it does not take yet refused with exit 2 and no
-/// picture; `explain` on it shows the path tracer's path and says so.
+/// `--integrator light` and `bdpt`: the Cornell box to an EXR whose mean is the path
+/// tracer's within a few percent; the flags they do not take yet refused with exit 2 and no
+/// picture; `explain` on a light-traced scene shows the path tracer's path and says so.
 #[test]
 fn light_tracing_renders_and_refuses_what_it_cannot_do() {
     let dir = scratch("cli-light");
@@ -466,7 +466,7 @@ fn light_tracing_renders_and_refuses_what_it_cannot_do() {
     let scene = scene.to_str().unwrap();
     let small = ["--width", "16", "--height", "16", "--spp", "256", "-q"];
     let mut means = vec![];
-    for (integrator, out) in [("light", "l.exr"), ("path", "p.exr")] {
+    for (integrator, out) in [("light", "l.exr"), ("bdpt", "b.exr"), ("path", "p.exr")] {
         expect(
             &[
                 &["render", scene, "-o", out, "--integrator", integrator][..],
@@ -486,36 +486,37 @@ fn light_tracing_renders_and_refuses_what_it_cannot_do() {
         }
         means.push(sum / 256.0);
     }
-    assert!(
-        (means[0] - means[1]).abs() < 0.03 * means[1],
-        "light {} against path {}",
-        means[0],
-        means[1]
-    );
-    let mut refused = 0;
-    for flag in [&["--region", "0,0,8,8"][..], &["--checkpoint", "c.ckpt"]] {
-        let o = expect(
-            &[
-                &["render", scene, "-o", "x.png", "--integrator", "light"][..],
-                flag,
-                &small,
-            ]
-            .concat(),
-            &dir,
-            2,
-        );
+    for (k, integrator) in ["light", "bdpt"].iter().enumerate() {
         assert!(
-            stderr(&o).contains(&format!(
-                "light tracing cannot be combined with {}",
-                flag[0]
-            )),
-            "{}",
-            stderr(&o)
+            (means[k] - means[2]).abs() < 0.03 * means[2],
+            "{integrator} {} against path {}",
+            means[k],
+            means[2]
         );
-        assert!(!dir.join("x.png").exists());
-        refused += 1;
     }
-    assert_eq!(refused, 2);
+    let mut refused = 0;
+    for (integrator, name) in [("light", "light tracing"), ("bdpt", "bdpt")] {
+        for flag in [&["--region", "0,0,8,8"][..], &["--checkpoint", "c.ckpt"]] {
+            let o = expect(
+                &[
+                    &["render", scene, "-o", "x.png", "--integrator", integrator][..],
+                    flag,
+                    &small,
+                ]
+                .concat(),
+                &dir,
+                2,
+            );
+            assert!(
+                stderr(&o).contains(&format!("{name} cannot be combined with {}", flag[0])),
+                "{}",
+                stderr(&o)
+            );
+            assert!(!dir.join("x.png").exists());
+            refused += 1;
+        }
+    }
+    assert_eq!(refused, 4);
     let o = expect(
         &[
             "explain",

@@ -24,6 +24,7 @@ type = "path"
 sampler = "independent"
 rr_depth = 3
 clamp = 10
+mis = "balance"
 [camera]
 type = "orthographic"
 height = 5
