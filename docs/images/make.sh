@@ -27,6 +27,7 @@ render() {
 
 render seed scenes/seed.toml
 render seed-path scenes/seed.toml --integrator path --spp 64
+render seed-bdpt scenes/seed.toml --integrator bdpt --spp 256
 render showcase scenes/showcase.toml
 render detail scenes/detail.toml
 render materials scenes/materials.toml
@@ -40,7 +41,8 @@ render bunny scenes/bunny.toml --width 640 --height 640
 render spot scenes/spot.toml --width 640 --height 480
 render field scenes/field.toml --width 960 --height 540
 render cornell scenes/cornell.toml --spp 4096
-render caustics-path scenes/caustics.toml
+render caustics scenes/caustics.toml
+render caustics-path scenes/caustics.toml --integrator path
 render caustics-light scenes/caustics.toml --integrator light
 render far-checker-filtered scenes/far-checker.toml
 sed 's/^filter_textures = true/filter_textures = false/' scenes/far-checker.toml > scenes/far-checker.point.toml

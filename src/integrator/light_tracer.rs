@@ -5,7 +5,7 @@
 //! from a point or spot light that reaches a diffuse surface through glass or off a mirror
 //! (a caustic). It cannot show mirrors and glass themselves, whose connection to the eye
 //! is a delta, nor the sky seen directly (it lights the scene); bidirectional
-//! path tracing (issue 47) will join it to the path tracer. The transport is the adjoint
+//! path tracing (bdpt/) joins it to the path tracer. The transport is the adjoint
 //! one: no `1 / eta^2` on refraction, and the shading normal's correction (Veach).
 
 use super::RayStats;

@@ -348,6 +348,8 @@ fn the_every_key_scene_has_every_key_and_type_of_the_schema() {
         "exponential",
         "whitted",
         "light",
+        "bdpt",
+        "power",
         "sobol",
         "phong",
         "constant",
