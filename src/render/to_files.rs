@@ -147,7 +147,7 @@ pub fn run(scene: &Scene, options: &RunOptions) -> Result<Finished, RunError> {
         return Ok(Finished::whole(r.rendered, r.spp, vec![]));
     }
     if s.integrator.kind == crate::scene::IntegratorKind::Bdpt {
-        let r = super::bdpt::render_bdpt_for(scene, &whole, options.time)?;
+        let r = super::bdpt::render_bdpt_for(scene, &whole, options.time, false)?;
         return Ok(Finished::whole(r.rendered, r.spp, vec![]));
     }
     if !integrator.uses_sampler() {

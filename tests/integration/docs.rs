@@ -37,6 +37,16 @@ fn caption_spp(caption: &str) -> Option<u32> {
     digits.chars().rev().collect::<String>().parse().ok()
 }
 
+/// Whether `view` names a strategy image of `--aov strategies`: `s1-t2`, `s1-t2-unweighted`.
+fn is_strategy(view: &str) -> bool {
+    let view = view.strip_suffix("-unweighted").unwrap_or(view);
+    view.split_once("-t").is_some_and(|(s, t)| {
+        s.strip_prefix('s')
+            .is_some_and(|s| s.parse::<u32>().is_ok())
+            && t.parse::<u32>().is_ok()
+    })
+}
+
 /// One line of docs/images/make.sh: `render NAME SCENE [FLAGS...]`.
 struct Made {
     name: String,
@@ -139,6 +149,7 @@ fn every_picture_is_made_by_the_script_with_the_samples_its_caption_gives() {
         "docs/preview.md",
         "docs/lab.md",
         "docs/lpe.md",
+        "docs/bdpt.md",
     ] {
         let text = std::fs::read_to_string(repo(page)).unwrap();
         for (i, _) in text.match_indices("images/") {
@@ -159,6 +170,9 @@ fn every_picture_is_made_by_the_script_with_the_samples_its_caption_gives() {
                         && m.flags.windows(2).any(|w| {
                             (w[0] == "--aov"
                                 && (w[1] == "all" || w[1].split(',').any(|v| v == view)))
+                                || (w[0] == "--aov"
+                                    && w[1].split(',').any(|v| v == "strategies")
+                                    && is_strategy(view))
                                 || (w[0] == "--lpe" && w[1].split('=').next() == Some(view))
                         })
                 })

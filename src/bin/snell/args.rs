@@ -198,10 +198,12 @@ pub(crate) struct RenderArgs {
     #[arg(long)]
     pub(crate) stats: bool,
     /// Debug views to write besides the picture, comma-separated: normal, uv, depth,
-    /// albedo, object, material, bounces, variance (the path tracer's), or all. With a .png output each goes to its own
-    /// file (seed.normal.png ...); with .exr, all go into the one file as layers.
+    /// albedo, object, material, bounces, variance (the path tracer's), or all; and
+    /// strategies (bdpt's: each strategy's light, weighted and not, for paths of up to 4
+    /// segments). With a .png output each goes to its own file (seed.normal.png,
+    /// seed.s1-t2.png ...); with .exr, all go into the one file as layers.
     #[arg(long, value_name = "NAMES", value_delimiter = ',', value_parser = parse_aov)]
-    pub(crate) aov: Vec<Vec<Aov>>,
+    pub(crate) aov: Vec<AovArg>,
     /// A light path expression to render beside the picture (path tracer; repeatable):
     /// NAME=EXPR, such as direct=C<RD>L, or a preset: emission, direct, indirect, specular,
     /// caustics, per-light. With a .png output each goes to its own file (seed.direct.png);
@@ -242,14 +244,41 @@ fn parse_tonemap(s: &str) -> Result<snell::output::tone::ToneCurve, String> {
         .ok_or_else(|| format!("`{s}` is not a tone curve: use clamp, reinhard or aces"))
 }
 
-fn parse_aov(s: &str) -> Result<Vec<Aov>, String> {
-    if s == "all" {
-        return Ok(Aov::ALL.to_vec());
+/// One name given to `--aov`: debug views (one, or `all`), or bdpt's strategy images.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) enum AovArg {
+    /// Per-pixel debug views.
+    Views(Vec<Aov>),
+    /// Bidirectional path tracing's images of each strategy.
+    Strategies,
+}
+
+impl AovArg {
+    /// The debug views it names (none for the strategy images).
+    pub(crate) fn views(&self) -> &[Aov] {
+        match self {
+            AovArg::Views(v) => v,
+            AovArg::Strategies => &[],
+        }
     }
-    Aov::from_name(s).map(|a| vec![a]).ok_or_else(|| {
-        let names: Vec<&str> = Aov::ALL.iter().map(|a| a.name()).collect();
-        format!("`{s}` is not a debug view: use {} or all", names.join(", "))
-    })
+}
+
+fn parse_aov(s: &str) -> Result<AovArg, String> {
+    if s == "all" {
+        return Ok(AovArg::Views(Aov::ALL.to_vec()));
+    }
+    if s == "strategies" {
+        return Ok(AovArg::Strategies);
+    }
+    Aov::from_name(s)
+        .map(|a| AovArg::Views(vec![a]))
+        .ok_or_else(|| {
+            let names: Vec<&str> = Aov::ALL.iter().map(|a| a.name()).collect();
+            format!(
+                "`{s}` is not a debug view: use {}, all or strategies",
+                names.join(", ")
+            )
+        })
 }
 
 #[derive(Args, Debug)]

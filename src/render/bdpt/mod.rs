@@ -5,6 +5,10 @@
 //! picture is the two together, in passes that a time limit may stop. The same bytes
 //! at any thread count.
 
+mod strategies;
+
+pub use strategies::{STRATEGY_DEPTH, strategy_list, strategy_names};
+
 use super::passes::{PassDone, in_passes};
 use super::{PixelJob, RenderError, RenderOptions, Rendered, TilesDone, for_each_tile};
 use crate::film::{Film, Image, SplatFilm};
@@ -34,6 +38,8 @@ pub struct BdptRendered {
     pub rendered: Rendered,
     /// Samples a pixel in the picture.
     pub spp: u32,
+    /// The strategy images, if asked for, in [`strategy_names`]' order.
+    pub strategies: Vec<Image>,
 }
 
 /// What a tile gathers: ray counts, bad samples, and the subpaths' memory its pixels reuse.
@@ -46,18 +52,20 @@ struct TileWork {
 
 /// Renders `scene` bidirectionally, `scene.settings.spp` samples a pixel.
 pub fn render_bdpt(scene: &Scene, options: &RenderOptions) -> Result<Rendered, BdptError> {
-    Ok(render_bdpt_for(scene, options, None)?.rendered)
+    Ok(render_bdpt_for(scene, options, None, false)?.rendered)
 }
 
 /// Renders `scene` bidirectionally in passes of 1, 2, 4 ... samples a pixel, until its
 /// `spp`, until a pass ends after `time` (from the start), or until `options.cancel` stops
 /// it; a pass cancelled part way is left out of the picture (the film and its splats are
 /// put back as they were), so the picture is always that of whole passes, and a render
-/// stopped by `time` at `n` samples a pixel is the render of `spp = n`, to the bit.
+/// stopped by `time` at `n` samples a pixel is the render of `spp = n`, to the bit. With
+/// `strategies`, each strategy's images too (strategies.rs).
 pub fn render_bdpt_for(
     scene: &Scene,
     options: &RenderOptions,
     time: Option<Duration>,
+    strategies: bool,
 ) -> Result<BdptRendered, BdptError> {
     let start = Instant::now();
     let s = &scene.settings;
@@ -66,6 +74,8 @@ pub fn render_bdpt_for(
     }
     let view = LightView::of(scene);
     let splats = SplatFilm::new(s.width, s.height, &s.filter);
+    let by_strategy =
+        strategies.then(|| strategies::StrategyFilms::new(s.width, s.height, s.max_depth));
     let mut film: Film = Film::new(s.width, s.height);
     let grid = film.grid();
     let pixels = grid.pixels_in(None);
@@ -78,6 +88,7 @@ pub fn render_bdpt_for(
     };
     let done = in_passes(s.spp, time, start, pixels, options, |samples, pass| {
         let (before, kept) = (splats.snapshot(), film.clone());
+        let strategies_before = by_strategy.as_ref().map(|f| f.snapshot());
         let tiles = for_each_tile(
             &mut film,
             pass,
@@ -90,9 +101,20 @@ pub fn render_bdpt_for(
                     samples.clone(),
                     (pixel, rays, bad),
                     |ray, sampler, rays| {
-                        Bdpt.sample(scene, &view, ray, sampler, paths, rays, &mut |px, py, c| {
-                            splats.add(px, py, c)
-                        })
+                        Bdpt.sample_with(
+                            scene,
+                            &view,
+                            ray,
+                            sampler,
+                            paths,
+                            rays,
+                            &mut |px, py, c| splats.add(px, py, c),
+                            &mut |st| {
+                                if let Some(f) = &by_strategy {
+                                    f.add(st, x, y);
+                                }
+                            },
+                        )
                     },
                     |_| {},
                 );
@@ -109,6 +131,9 @@ pub fn render_bdpt_for(
             // Cancelled: the pass's samples and splats are taken back.
             splats.restore(&before);
             film = kept;
+            if let (Some(f), Some(b)) = (&by_strategy, &strategies_before) {
+                f.restore(b);
+            }
         }
         Ok(PassDone {
             rays: pass_done.rays,
@@ -133,6 +158,7 @@ pub fn render_bdpt_for(
             pixels_rendered: pixels * done.spp as u64 / s.spp.max(1) as u64,
         },
         spp: done.spp,
+        strategies: by_strategy.map_or(vec![], |f| f.images(done.spp)),
     })
 }
 

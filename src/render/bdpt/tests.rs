@@ -230,10 +230,16 @@ fn the_same_bytes_at_any_thread_count() {
 #[test]
 fn a_render_stopped_by_time_is_the_render_of_its_samples() {
     let make = |spp| sized(cornell(), 16, spp, 1);
-    let stopped = render_bdpt_for(&make(4096), &options(2), Some(Duration::ZERO)).unwrap();
+    let stopped = render_bdpt_for(&make(4096), &options(2), Some(Duration::ZERO), false).unwrap();
     assert_eq!(stopped.spp, 1, "only the first pass");
     assert!(stopped.rendered.complete());
-    let short = render_bdpt_for(&make(4096), &options(2), Some(Duration::from_millis(30))).unwrap();
+    let short = render_bdpt_for(
+        &make(4096),
+        &options(2),
+        Some(Duration::from_millis(30)),
+        false,
+    )
+    .unwrap();
     assert!(short.spp >= 1 && short.spp < 4096, "{}", short.spp);
     for r in [stopped, short] {
         let whole = render_bdpt(&make(r.spp), &options(1)).unwrap();
@@ -268,4 +274,53 @@ fn every_material_is_the_path_traced_one() {
     );
     let make = |seed| sized(scene(&phong), 16, 64, seed);
     assert_unbiased("Phong", z_test(make, 64, 256), 16);
+}
+
+/// The weighted strategy images add up to the picture (box-filtered, paths no longer than
+/// the images show), each strategy's light once; the unweighted ones each estimate the
+/// light of all the strategies of their length, so those of one length agree in mean.
+#[test]
+fn the_weighted_strategies_add_up_to_the_picture() {
+    let mut scene = sized(cornell(), 16, 64, 1);
+    scene.settings.max_depth = STRATEGY_DEPTH;
+    let r = render_bdpt_for(&scene, &options(2), None, true).unwrap();
+    let names = strategy_names(STRATEGY_DEPTH);
+    assert_eq!(r.strategies.len(), names.len());
+    assert_eq!(names.len(), 2 * 13);
+    let mut sum = vec![Color::ZERO; 16 * 16];
+    for (name, img) in names.iter().zip(&r.strategies) {
+        if !name.ends_with("-unweighted") {
+            for (s, p) in sum.iter_mut().zip(&img.pixels) {
+                *s += *p;
+            }
+        }
+    }
+    let mut checked = 0;
+    for (s, p) in sum.iter().zip(&r.rendered.image.pixels) {
+        assert!(
+            (*s - *p).abs().max_element() < 1e-4 + 1e-4 * p.max_element(),
+            "{s} vs {p}"
+        );
+        checked += 1;
+    }
+    assert_eq!(checked, 256);
+    // Direct light (2 segments): the camera path hitting the light, a light sampled, the
+    // light's path joined to the eye; each alone estimates all of it.
+    let mean = |name: &str| {
+        let i = names.iter().position(|n| n == name).unwrap();
+        let img = &r.strategies[i];
+        img.pixels
+            .iter()
+            .map(|c| c.element_sum() as f64)
+            .sum::<f64>()
+            / img.pixels.len() as f64
+    };
+    let direct = mean("s1-t2-unweighted");
+    for other in ["s0-t3-unweighted", "s2-t1-unweighted"] {
+        let m = mean(other);
+        assert!(
+            (m - direct).abs() < 0.15 * direct,
+            "{other}: {m} against {direct}"
+        );
+    }
 }

@@ -517,6 +517,57 @@ fn light_tracing_renders_and_refuses_what_it_cannot_do() {
         }
     }
     assert_eq!(refused, 4);
+    // bdpt's strategy images: one file each beside a PNG; refused by another integrator.
+    expect(
+        &[
+            &[
+                "render",
+                scene,
+                "-o",
+                "s.png",
+                "--integrator",
+                "bdpt",
+                "--aov",
+                "strategies",
+            ][..],
+            &small,
+        ]
+        .concat(),
+        &dir,
+        0,
+    );
+    for name in [
+        "s.png",
+        "s.s0-t2.png",
+        "s.s1-t2.png",
+        "s.s2-t1-unweighted.png",
+    ] {
+        assert!(dir.join(name).exists(), "{name}");
+    }
+    let o = expect(
+        &[
+            &[
+                "render",
+                scene,
+                "-o",
+                "t.png",
+                "--integrator",
+                "path",
+                "--aov",
+                "strategies",
+            ][..],
+            &small,
+        ]
+        .concat(),
+        &dir,
+        2,
+    );
+    assert!(
+        stderr(&o).contains("the strategy images are bidirectional path tracing's"),
+        "{}",
+        stderr(&o)
+    );
+    assert!(!dir.join("t.png").exists());
     let o = expect(
         &[
             "explain",

@@ -39,6 +39,7 @@ fn name(kind: IntegratorKind) -> &'static str {
 /// that of the passes done).
 pub(super) fn render_splatted(
     kind: IntegratorKind,
+    strategies: bool,
     run: &Run,
     time: Option<std::time::Duration>,
 ) -> Result<Outcome, String> {
@@ -48,14 +49,14 @@ pub(super) fn render_splatted(
         cancel: Some(&STOP),
         region: None,
     };
-    let (spp, r) = if kind == IntegratorKind::Bdpt {
-        let r = snell::render::bdpt::render_bdpt_for(run.scene, &options, time)
+    let (spp, r, layers) = if kind == IntegratorKind::Bdpt {
+        let r = snell::render::bdpt::render_bdpt_for(run.scene, &options, time, strategies)
             .map_err(|e| e.to_string())?;
-        (r.spp, r.rendered)
+        (r.spp, r.rendered, r.strategies)
     } else {
         let r = snell::render::light::render_light_for(run.scene, &options, time)
             .map_err(|e| e.to_string())?;
-        (r.spp, r.rendered)
+        (r.spp, r.rendered, vec![])
     };
     let unit = if kind == IntegratorKind::Bdpt {
         "samples"
@@ -74,6 +75,6 @@ pub(super) fn render_splatted(
         bad_samples: r.bad_samples,
         error: None,
         film: None,
-        layers: vec![],
+        layers,
     })
 }

@@ -143,8 +143,8 @@ fn render_job(
     let mut aovs: Vec<Aov> = vec![];
     for list in &args.aov {
         // `all` is every view the integrator has: Whitted has no variance.
-        let all = list.as_slice() == Aov::ALL;
-        for a in list {
+        let all = list.views() == Aov::ALL;
+        for a in list.views() {
             let unavailable = all && *a == Aov::Variance && !random;
             if !aovs.contains(a) && !unavailable {
                 aovs.push(*a);
@@ -164,14 +164,26 @@ fn render_job(
     {
         return code;
     }
+    let strategies = args.aov.contains(&crate::args::AovArg::Strategies);
+    if strategies && kind != snell::scene::IntegratorKind::Bdpt {
+        return usage_error(
+            "the strategy images are bidirectional path tracing's",
+            Some("render with --integrator bdpt (or [integrator] type = \"bdpt\")"),
+        );
+    }
     let lpe = match lpe::prepare(args, &scene, &aovs) {
         Ok(l) => l,
         Err(code) => return code,
     };
-    let layer_names: Vec<String> = lpe
+    let mut layer_names: Vec<String> = lpe
         .iter()
         .flat_map(|set| set.named.iter().map(|n| n.name.clone()))
         .collect();
+    if strategies {
+        layer_names.extend(snell::render::bdpt::strategy_names(
+            scene.settings.max_depth,
+        ));
+    }
     // Separate PNGs are reserved now, like the picture, so a bad path fails before rendering.
     if let Err(e) = pending
         .add_views(&aovs)
@@ -238,7 +250,7 @@ fn render_job(
         kind,
         snell::scene::IntegratorKind::Light | snell::scene::IntegratorKind::Bdpt
     ) {
-        light::render_splatted(kind, &run, args.time)
+        light::render_splatted(kind, strategies, &run, args.time)
     } else if by_passes {
         passes::render_passes(&run, resumed.and_then(|c| c.film), args.time)
     } else {

@@ -22,7 +22,7 @@ pub(super) fn refuse_outputs_over_inputs(
         snell::output::partial_path(out_path),
     ];
     for list in &args.aov {
-        for &a in list {
+        for &a in list.views() {
             let p = Outputs::view_path(out_path, a);
             outputs.push(snell::output::partial_path(&p));
             outputs.push(p);
