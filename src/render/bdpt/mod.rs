@@ -69,29 +69,102 @@ pub fn render_bdpt_for(
 ) -> Result<BdptRendered, BdptError> {
     let start = Instant::now();
     let s = &scene.settings;
-    if scene.camera.view().projection != crate::camera::Projection::Perspective {
-        return Err(BdptError::Camera);
-    }
-    let view = LightView::of(scene);
-    let splats = SplatFilm::new(s.width, s.height, &s.filter);
-    let by_strategy =
-        strategies.then(|| strategies::StrategyFilms::new(s.width, s.height, s.max_depth));
-    let mut film: Film = Film::new(s.width, s.height);
-    let grid = film.grid();
+    let mut film = BdptFilm::new(scene, strategies)?;
+    let grid = film.film.grid();
     let pixels = grid.pixels_in(None);
-    let camera = scene.camera.raster(s.width, s.height);
-    // The job places each sample on the film; the integrator it names is not called.
-    let job = PixelJob {
-        scene,
-        integrator: &Path,
-        camera: &camera,
-    };
     let done = in_passes(s.spp, time, start, pixels, options, |samples, pass| {
-        let (before, kept) = (splats.snapshot(), film.clone());
-        let strategies_before = by_strategy.as_ref().map(|f| f.snapshot());
+        film.pass(scene, samples, pass)
+    })?;
+    Ok(BdptRendered {
+        rendered: Rendered {
+            image: film.image(),
+            rays: done.rays,
+            bad_samples: done.bad,
+            tiles_done: if done.complete { grid.count() } else { 0 },
+            tiles_total: grid.count(),
+            pixels_rendered: pixels * done.spp as u64 / s.spp.max(1) as u64,
+        },
+        spp: done.spp,
+        strategies: film.strategy_images(),
+    })
+}
+
+/// A bidirectional render under way, which passes add samples to (the preview's, or one
+/// render's): the film of the camera's strategies, the splats of the light paths joined to
+/// the eye, the strategy images if asked for, and the samples a pixel they hold.
+pub struct BdptFilm {
+    film: Film,
+    splats: SplatFilm,
+    strategies: Option<strategies::StrategyFilms>,
+    spp: u32,
+}
+
+impl BdptFilm {
+    /// An empty film for `scene` (with strategy images, if `strategies`).
+    pub fn new(scene: &Scene, strategies: bool) -> Result<Self, BdptError> {
+        let s = &scene.settings;
+        if scene.camera.view().projection != crate::camera::Projection::Perspective {
+            return Err(BdptError::Camera);
+        }
+        Ok(BdptFilm {
+            film: Film::new(s.width, s.height),
+            splats: SplatFilm::new(s.width, s.height, &s.filter),
+            strategies: strategies
+                .then(|| strategies::StrategyFilms::new(s.width, s.height, s.max_depth)),
+            spp: 0,
+        })
+    }
+
+    /// Samples a pixel it holds.
+    pub fn spp(&self) -> u32 {
+        self.spp
+    }
+
+    /// The picture: the camera's strategies and the splats over the samples taken.
+    pub fn image(&self) -> Image {
+        let mut image: Image = self.film.image();
+        let light = self.splats.image(1.0 / self.spp.max(1) as f32);
+        for (p, l) in image.pixels.iter_mut().zip(&light.pixels) {
+            // A filter's negative lobes may take a pixel below 0, which the camera's part of
+            // it is cut at too.
+            *p = (*p + *l).max(Color::ZERO);
+        }
+        image
+    }
+
+    /// The strategy images, in [`strategy_names`]' order (none if not asked for).
+    pub fn strategy_images(&self) -> Vec<Image> {
+        self.strategies
+            .as_ref()
+            .map_or(vec![], |f| f.images(self.spp))
+    }
+
+    /// Adds samples `samples` (from the number it holds) of every pixel of `scene`, whose
+    /// settings and camera are the film's. Cancelled part way, the pass is taken back
+    /// (`whole` false): the film is always that of whole passes.
+    pub(crate) fn pass(
+        &mut self,
+        scene: &Scene,
+        samples: std::ops::Range<u32>,
+        options: &RenderOptions,
+    ) -> Result<PassDone, RenderError> {
+        let s = &scene.settings;
+        let view = LightView::of(scene);
+        let grid = self.film.grid();
+        let camera = scene.camera.raster(s.width, s.height);
+        // The job places each sample on the film; the integrator it names is not called.
+        let job = PixelJob {
+            scene,
+            integrator: &Path,
+            camera: &camera,
+        };
+        let (before, kept) = (self.splats.snapshot(), self.film.clone());
+        let strategies_before = self.strategies.as_ref().map(|f| f.snapshot());
+        let (splats, by_strategy) = (&self.splats, &self.strategies);
+        let n = samples.len() as u32;
         let tiles = for_each_tile(
-            &mut film,
-            pass,
+            &mut self.film,
+            options,
             |_| false,
             |x, y, pixel, tile: &mut TileWork| {
                 let TileWork { rays, bad, paths } = tile;
@@ -110,7 +183,7 @@ pub fn render_bdpt_for(
                             rays,
                             &mut |px, py, c| splats.add(px, py, c),
                             &mut |st| {
-                                if let Some(f) = &by_strategy {
+                                if let Some(f) = by_strategy {
                                     f.add(st, x, y);
                                 }
                             },
@@ -127,11 +200,13 @@ pub fn render_bdpt_for(
             .collect();
         let pass_done = TilesDone::gather(stats, grid);
         let whole = pass_done.tiles == grid.count() as usize;
-        if !whole {
+        if whole {
+            self.spp += n;
+        } else {
             // Cancelled: the pass's samples and splats are taken back.
-            splats.restore(&before);
-            film = kept;
-            if let (Some(f), Some(b)) = (&by_strategy, &strategies_before) {
+            self.splats.restore(&before);
+            self.film = kept;
+            if let (Some(f), Some(b)) = (&self.strategies, &strategies_before) {
                 f.restore(b);
             }
         }
@@ -140,26 +215,20 @@ pub fn render_bdpt_for(
             bad: pass_done.bad_samples,
             whole,
         })
-    })?;
-    let mut image: Image = film.image();
-    let light = splats.image(1.0 / done.spp.max(1) as f32);
-    for (p, l) in image.pixels.iter_mut().zip(&light.pixels) {
-        // A filter's negative lobes may take a pixel below 0, which the camera's part of it
-        // is cut at too.
-        *p = (*p + *l).max(Color::ZERO);
     }
-    Ok(BdptRendered {
-        rendered: Rendered {
-            image,
-            rays: done.rays,
-            bad_samples: done.bad,
-            tiles_done: if done.complete { grid.count() } else { 0 },
-            tiles_total: grid.count(),
-            pixels_rendered: pixels * done.spp as u64 / s.spp.max(1) as u64,
-        },
-        spp: done.spp,
-        strategies: by_strategy.map_or(vec![], |f| f.images(done.spp)),
-    })
+
+    /// [`BdptFilm::pass`] of the next `n` samples a pixel, for callers outside the crate
+    /// (the preview): what it traced, and whether it was whole.
+    pub fn add_samples(
+        &mut self,
+        scene: &Scene,
+        n: u32,
+        options: &RenderOptions,
+    ) -> Result<(RayStats, bool), RenderError> {
+        let from = self.spp;
+        let done = self.pass(scene, from..from + n, options)?;
+        Ok((done.rays, done.whole))
+    }
 }
 
 #[cfg(test)]

@@ -537,3 +537,56 @@ fn the_lab_answers_and_refuses_bad_queries() {
     }
     assert_eq!(refused, 10);
 }
+
+/// A scene rendered by bdpt is previewed by bdpt, in passes: its finished frame is the
+/// render's picture at the same samples (within JPEG's error), caustics and all.
+#[test]
+fn a_bdpt_scene_is_previewed_bidirectionally() {
+    let dir = super::super::scratch("serve-bdpt");
+    std::fs::create_dir_all(dir.join("scenes")).unwrap();
+    std::fs::copy(
+        super::super::repo("scenes/caustics.toml"),
+        dir.join("scenes/caustics.toml"),
+    )
+    .unwrap();
+    let s = start(
+        &dir,
+        "scenes/caustics.toml",
+        &["--size", "48", "--spp", "4"],
+    );
+    let st = wait_for(s.port, 60, "a finished picture", |s| {
+        current_frame(s) && s["frame"]["done"] == true
+    });
+    assert_eq!(st["integrator"], "bdpt");
+    let (w, h) = (
+        st["size"][0].as_u64().unwrap(),
+        st["size"][1].as_u64().unwrap(),
+    );
+    assert_eq!(st["frame"]["spp"], 4);
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_snell"))
+        .args(["render", "scenes/caustics.toml", "-o", "r.png", "--quiet"])
+        .args(["--width", &w.to_string(), "--height", &h.to_string()])
+        .args(["--spp", "4"])
+        .current_dir(&dir)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let mean = |img: image::RgbImage| {
+        img.pixels().flat_map(|p| p.0).map(f64::from).sum::<f64>() / (img.len() as f64)
+    };
+    let png = mean(image::open(dir.join("r.png")).unwrap().to_rgb8());
+    let shown = mean(
+        image::load_from_memory(&get(s.port, "/frame.jpg").body)
+            .unwrap()
+            .to_rgb8(),
+    );
+    assert!(png > 5.0, "{png}");
+    assert!(
+        (shown - png).abs() < 1.0,
+        "the page's picture {shown}, the PNG {png}"
+    );
+}

@@ -296,7 +296,7 @@ fn load(shared: &Shared) -> bool {
                 // The preview has no light tracing: the path tracer, which agrees with it,
                 // stands in.
                 IntegratorKind::Light => "path (for light)",
-                IntegratorKind::Bdpt => "path (for bdpt)",
+                IntegratorKind::Bdpt => "bdpt",
             };
             s.target_spp = scene.settings.spp;
             s.scene = Some(Arc::new(scene));
@@ -389,7 +389,36 @@ fn render(shared: &Shared) -> Result<(), String> {
     };
     let mut rays = 0u64;
     let target = scene.settings.spp;
-    if integrator.uses_sampler() {
+    if scene.settings.integrator.kind == IntegratorKind::Bdpt {
+        // Bidirectional passes: the camera's samples and the light paths' splats together.
+        let mut film =
+            snell::render::bdpt::BdptFilm::new(&scene, false).map_err(|e| e.to_string())?;
+        let (mut passes, mut per_sample) = (0u32, None::<f64>);
+        while film.spp() < target && !cancelled() {
+            let n = per_sample.map_or(1, |t| ((PASS_TIME / t) as u32).clamp(1, 64));
+            let n = n.min(target - film.spp());
+            let pass_start = Instant::now();
+            let (traced, whole) = film
+                .add_samples(&scene, n, &options)
+                .map_err(|e| e.to_string())?;
+            if !whole {
+                return Ok(());
+            }
+            per_sample = Some(pass_start.elapsed().as_secs_f64() / n as f64);
+            (passes, rays) = (passes + 1, rays + traced.total());
+            let done = film.spp();
+            publish(
+                shared,
+                generation,
+                film.image(),
+                done,
+                passes,
+                start,
+                rays,
+                done == target,
+            );
+        }
+    } else if integrator.uses_sampler() {
         let mut film = Film::new(scene.settings.width, scene.settings.height);
         let (mut done, mut passes, mut per_sample) = (0u32, 0u32, None::<f64>);
         while done < target && !cancelled() {
