@@ -217,8 +217,8 @@ impl BdptFilm {
         })
     }
 
-    /// [`BdptFilm::pass`] of the next `n` samples a pixel, for callers outside the crate
-    /// (the preview): what it traced, and whether it was whole.
+    /// Adds the next `n` samples a pixel as one pass (taken back if cancelled part way), for
+    /// callers outside the crate (the preview): what it traced, and whether it was whole.
     pub fn add_samples(
         &mut self,
         scene: &Scene,
