@@ -188,8 +188,17 @@ def run(spec: JobSpec, stream: Optional[TextIO] = None) -> Costs:
                         frames_done += 1
                 progress.update(done, frames_done, force=not more and not pending)
         except BaseException:
-            for ref in pending:
-                ray.cancel(ref, force=True)
+            # Only the tasks still running: cancelling one that has just finished races
+            # with its reply in Ray's core worker, which then fails a check and exits.
+            try:
+                done_refs, running = ray.wait(list(pending), num_returns=len(pending), timeout=0)
+            except Exception:
+                running = list(pending)
+            for ref in running:
+                try:
+                    ray.cancel(ref, force=True)
+                except Exception:
+                    pass
             raise
         finally:
             progress.finish()
