@@ -188,15 +188,12 @@ def run(spec: JobSpec, stream: Optional[TextIO] = None) -> Costs:
                         frames_done += 1
                 progress.update(done, frames_done, force=not more and not pending)
         except BaseException:
-            # Only the tasks still running: cancelling one that has just finished races
-            # with its reply in Ray's core worker, which then fails a check and exits.
-            try:
-                done_refs, running = ray.wait(list(pending), num_returns=len(pending), timeout=0)
-            except Exception:
-                running = list(pending)
-            for ref in running:
+            # Cancelled in the task (it kills its snell), not by killing its worker: a forced
+            # cancel races with the reply of a task that has just finished, and Ray's core
+            # worker then fails a check and takes the whole process down.
+            for ref in pending:
                 try:
-                    ray.cancel(ref, force=True)
+                    ray.cancel(ref)
                 except Exception:
                     pass
             raise

@@ -115,7 +115,13 @@ def render_tile(
             )
         except OSError as err:
             raise SnellFailed(f"cannot run {job.snell} on this worker: {err.strerror}") from None
-        _, err_bytes = process.communicate()
+        try:
+            _, err_bytes = process.communicate()
+        except BaseException:
+            # The task was cancelled (Ray raises KeyboardInterrupt in it): snell goes too.
+            process.kill()
+            process.wait()
+            raise
         snell_s = time.perf_counter() - start
         stderr = err_bytes.decode("utf-8", "replace").strip()[-STDERR_LIMIT:]
         if process.returncode != 0:
