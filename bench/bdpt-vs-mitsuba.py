@@ -16,7 +16,7 @@ What it does
    follows compares renderers, not scenes.
 3. Equal time: snell ``--integrator path --time T``, snell ``--integrator bdpt --time T``,
    and Mitsuba ``path`` (variant llvm_ad_rgb) with as many samples as fit in T seconds (its
-   JIT compile not counted), each image's RMSE and relative MSE of the luminance against the
+   JIT compile not counted; in chunks of 64 samples, averaged), each image's RMSE and relative MSE of the luminance against the
    reference.
 
     pip install mitsuba numpy; apt-get install libllvm19
@@ -107,6 +107,22 @@ def mitsuba_scene(mi, spp):
     })
 
 
+CHUNK = 64
+
+
+def render_chunked(mi, dr, spp, seed):
+    """Mitsuba's render of `spp` samples a pixel as chunks of 64 with seeds of their own,
+    averaged: one wavefront of thousands of samples a pixel swamps the memory."""
+    scene = mitsuba_scene(mi, CHUNK)
+    chunks = max(1, spp // CHUNK)
+    total = None
+    for k in range(chunks):
+        img = np.array(mi.render(scene, seed=seed * 100000 + k), dtype=np.float64)
+        total = img if total is None else total + img
+    dr.sync_thread()
+    return total / chunks, chunks * CHUNK
+
+
 def lum(img):
     img = np.asarray(img, dtype=np.float64)[..., :3]
     return 0.2126 * img[..., 0] + 0.7152 * img[..., 1] + 0.0722 * img[..., 2]
@@ -142,11 +158,9 @@ def main():
         snell(args, scene, p('ref-bdpt.exr'), '--spp', str(args.ref), '--seed', '99')
     if not os.path.exists(p('ref-path.exr')):
         snell(args, scene, p('ref-path.exr'), '--integrator', 'path', '--spp', str(args.ref), '--seed', '98')
-    if not os.path.exists(p('ref-mitsuba.exr')):
-        img = mi.render(mitsuba_scene(mi, args.ref), seed=7)
-        mi.util.write_bitmap(p('ref-mitsuba.exr'), img)
+    mitsuba_ref, _ = render_chunked(mi, dr, args.ref, 7)
     ref = lum(read_exr(mi, p('ref-bdpt.exr')))
-    sp, mp = lum(read_exr(mi, p('ref-path.exr'))), lum(read_exr(mi, p('ref-mitsuba.exr')))
+    sp, mp = lum(read_exr(mi, p('ref-path.exr'))), lum(mitsuba_ref)
     print(f'scenes agree: snell path against Mitsuba path, mean relative difference '
           f'{np.abs(sp - mp).sum() / np.abs(mp).sum():.4f}, means {sp.mean():.5f} / {mp.mean():.5f}; '
           f'bdpt reference mean {ref.mean():.5f}')
@@ -156,21 +170,14 @@ def main():
         snell(args, scene, p(f'{integrator}.exr'), '--integrator', integrator,
               '--spp', '65536', '--time', str(args.time))
         rows.append((f'snell {integrator}', time.time() - start, lum(read_exr(mi, p(f'{integrator}.exr')))))
-    # Mitsuba: time a small render (after a warm-up that compiles), then as many as fit.
-    mi.render(mitsuba_scene(mi, 4), seed=1)
-    dr.sync_thread()
+    # Mitsuba: time a few chunks (after a warm-up that compiles), then as many as fit.
+    render_chunked(mi, dr, CHUNK, 1)
     start = time.time()
-    mi.render(mitsuba_scene(mi, 64), seed=2)
-    dr.sync_thread()
-    per = (time.time() - start) / 64
-    spp = max(1, int(args.time / per))
-    scene_m = mitsuba_scene(mi, spp)
-    mi.render(scene_m, seed=3)
-    dr.sync_thread()
+    render_chunked(mi, dr, 4 * CHUNK, 2)
+    per = (time.time() - start) / (4 * CHUNK)
     start = time.time()
-    img = mi.render(scene_m, seed=4)
-    dr.sync_thread()
-    rows.append((f'Mitsuba path ({spp} spp)', time.time() - start, lum(np.array(img))))
+    img, spp = render_chunked(mi, dr, max(CHUNK, int(args.time / per)), 3)
+    rows.append((f'Mitsuba path ({spp} spp)', time.time() - start, lum(img)))
     print(f'{"":24} {"seconds":>8} {"RMSE":>9} {"relMSE":>9}')
     for name, secs, img in rows:
         rmse = np.sqrt(np.mean((img - ref) ** 2))
