@@ -93,14 +93,25 @@ pub struct PathExplained {
     pub record: PathRecord,
 }
 
-/// The one path of sample `k` of pixel `(x, y)` under the path tracer, the same random
-/// numbers as the render gives that sample.
-pub fn path(scene: &Scene, (x, y): (u32, u32), k: u32) -> PathExplained {
+/// Sample `k` of pixel `(x, y)` as the render takes it: its sampler (started, the film
+/// position and the lens drawn), its film position, and its camera ray.
+fn sample_ray(
+    scene: &Scene,
+    (x, y): (u32, u32),
+    k: u32,
+) -> (crate::sampler::Sampler, (f32, f32), crate::math::Ray) {
     let s = &scene.settings;
     let mut sampler = crate::sampler::Sampler::new(s.integrator.sampler, s.seed);
     let (px, py, _) = crate::render::start_sample(s, &mut sampler, x, y, k);
     let camera = scene.camera.raster(s.width, s.height);
     let ray = crate::render::camera_ray(&camera, &mut sampler, px, py);
+    (sampler, (px, py), ray)
+}
+
+/// The one path of sample `k` of pixel `(x, y)` under the path tracer, the same random
+/// numbers as the render gives that sample.
+pub fn path(scene: &Scene, (x, y): (u32, u32), k: u32) -> PathExplained {
+    let (mut sampler, (px, py), ray) = sample_ray(scene, (x, y), k);
     let mut rays = RayStats::default();
     let mut record = PathRecord::default();
     let color = Path.trace(scene, &ray, &mut sampler, &mut rays, &mut record);
@@ -159,11 +170,7 @@ pub struct BdptExplained {
 /// Sample `k` of pixel `(x, y)` under bidirectional path tracing, the same random numbers
 /// as the render gives it, with each strategy it joined.
 pub fn bdpt(scene: &Scene, (x, y): (u32, u32), k: u32) -> BdptExplained {
-    let s = &scene.settings;
-    let mut sampler = crate::sampler::Sampler::new(s.integrator.sampler, s.seed);
-    let (px, py, _) = crate::render::start_sample(s, &mut sampler, x, y, k);
-    let camera = scene.camera.raster(s.width, s.height);
-    let ray = crate::render::camera_ray(&camera, &mut sampler, px, py);
+    let (mut sampler, (px, py), ray) = sample_ray(scene, (x, y), k);
     let mut rays = RayStats::default();
     let mut paths = crate::integrator::Paths::default();
     let mut strategies = vec![];

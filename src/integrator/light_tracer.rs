@@ -261,7 +261,7 @@ struct Vertex<'a> {
 
 /// Veach's correction of adjoint transport for a shading normal that is not the geometric
 /// one: `|wo.ns| |wi.ng| / (|wo.ng| |wi.ns|)` (1 where they agree).
-fn shading_correction(hit: &crate::scene::Hit, wo: Vec3A, wi: Vec3A) -> f32 {
+pub(super) fn shading_correction(hit: &crate::scene::Hit, wo: Vec3A, wi: Vec3A) -> f32 {
     let (ns, ng) = (hit.shading_normal, hit.normal);
     let den = wo.dot(ng).abs() * wi.dot(ns).abs();
     if den == 0.0 {

@@ -4,6 +4,7 @@
 
 use super::Context;
 use crate::bsdf::Bsdf;
+use crate::integrator::light_tracer::shading_correction;
 use crate::light::Light;
 use crate::math::{Color, Frame, Vec3A};
 use crate::scene::{Hit, Scene};
@@ -279,15 +280,4 @@ impl Vertex {
             }
         }
     }
-}
-
-/// Veach's correction of adjoint transport for a shading normal that is not the geometric
-/// one: `|wo.ns| |wi.ng| / (|wo.ng| |wi.ns|)` (1 where they agree).
-pub(super) fn shading_correction(hit: &Hit, wo: Vec3A, wi: Vec3A) -> f32 {
-    let (ns, ng) = (hit.shading_normal, hit.normal);
-    let den = wo.dot(ng).abs() * wi.dot(ns).abs();
-    if den == 0.0 {
-        return 0.0;
-    }
-    wo.dot(ns).abs() * wi.dot(ng).abs() / den
 }

@@ -3,9 +3,10 @@
 //! throughput and its densities both ways.
 
 use super::Context;
-use super::vertex::{Kind, Side, Surface, Vertex, shading_correction};
+use super::vertex::{Kind, Side, Surface, Vertex};
 use crate::accel::Skip;
 use crate::integrator::RayStats;
+use crate::integrator::light_tracer::shading_correction;
 use crate::math::{Color, Frame, Ray, Vec2, Vec3A, offset_ray_origin};
 use crate::sampler::Sampler;
 
