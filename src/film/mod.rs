@@ -210,6 +210,37 @@ impl<P> Film<P> {
     }
 }
 
+impl<P: Copy + Send + Sync> Film<P> {
+    /// Its pixels row by row from the top, in the film's own memory: each band of tile rows
+    /// (one stretch of the film) is rearranged in place through a copy of the band, so a
+    /// large film needs no second buffer as large as itself (fresh memory, whose pages the
+    /// system maps one by one as they are first written, costs more than the copy).
+    pub fn into_rows(self) -> Vec<P> {
+        let (w, grid) = (self.grid.width as usize, self.grid);
+        let mut pixels = self.pixels;
+        pixels
+            .par_chunks_mut(w * TILE as usize)
+            .enumerate()
+            .for_each_init(Vec::new, |band_copy: &mut Vec<P>, (ty, band)| {
+                band_copy.clear();
+                band_copy.extend_from_slice(band);
+                let mut from = 0;
+                for tx in 0..grid.tiles_x() {
+                    let i = ty as u32 * grid.tiles_x() + tx;
+                    let (x0, _, x1, _) = grid.rect(i);
+                    let tw = (x1 - x0) as usize;
+                    let tile = &band_copy[from..from + grid.len(i)];
+                    for (row, src) in tile.chunks_exact(tw).enumerate() {
+                        let start = row * w + x0 as usize;
+                        band[start..start + tw].copy_from_slice(src);
+                    }
+                    from += grid.len(i);
+                }
+            });
+        pixels
+    }
+}
+
 impl Film<FilmPixel> {
     /// The picture the samples so far make.
     pub fn image(&self) -> Image {
@@ -271,11 +302,20 @@ impl Image {
 mod tests {
     use super::*;
 
-    /// A film kept tile by tile reads back row by row: `rows` and `get` agree on every pixel,
-    /// at sizes that cut tiles short on both edges.
+    /// A film kept tile by tile reads back row by row: `rows`, `into_rows` and `get` agree
+    /// on every pixel, at sizes that cut tiles short on both edges.
     #[test]
     fn rows_read_the_tiles_back_in_image_order() {
-        for (w, h) in [(1, 1), (16, 16), (33, 17), (50, 3)] {
+        let mut checked = 0;
+        for (w, h) in [
+            (1, 1),
+            (16, 16),
+            (33, 17),
+            (50, 3),
+            (130, 70),
+            (64, 129),
+            (200, 64),
+        ] {
             let mut film: Film<(u32, u32)> = Film::new(w, h);
             let grid = film.grid();
             for i in 0..grid.count() {
@@ -290,9 +330,12 @@ mod tests {
                 for x in 0..w {
                     assert_eq!(rows[(y * w + x) as usize], (x, y));
                     assert_eq!(*film.get(x, y), (x, y));
+                    checked += 1;
                 }
             }
+            assert_eq!(film.into_rows(), rows);
         }
+        assert_eq!(checked, 1 + 256 + 561 + 150 + 9100 + 8256 + 12800);
     }
 
     /// The variance of a pixel's estimate, worked by hand: samples of luminance 1, 2, 3 and 4

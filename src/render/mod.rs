@@ -222,7 +222,7 @@ pub fn render_with(
     )?;
     let done = TilesDone::gather(tiles, grid);
     // On the render's own threads, as many as it was given.
-    let pixels = thread_pool(options.threads)?.install(|| film.rows(|c| *c));
+    let pixels = thread_pool(options.threads)?.install(|| film.into_rows());
     Ok(Rendered {
         image: Image {
             width: s.width,

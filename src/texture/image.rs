@@ -176,23 +176,27 @@ impl ImageData {
         self
     }
 
-    /// An image of `width` x `height` linear texels (row by row from the top), stored as
-    /// `like` stores its own: as bytes through its table, to the nearest entry, or as floats.
+    /// An image of `width` x `height` linear texels, `texel(x, y)` each (column `x`, row `y`
+    /// from the top), stored as `like` stores its own: as bytes through its table, to the
+    /// nearest entry, or as floats. Made row by row on every core, straight into the
+    /// storage (a level of floats first would be a fresh buffer four times the bytes').
     pub(super) fn level_like(
         like: &ImageData,
         width: u32,
         height: u32,
-        texels: Vec<Color>,
+        texel: impl Fn(u32, u32) -> Color + Sync,
     ) -> Self {
+        use rayon::prelude::*;
+        let (w, n) = (width as usize, width as usize * height as usize);
         let texels = match &like.texels {
             Texels::Bytes { linear, .. } => {
-                use rayon::prelude::*;
                 let nearest = NearestByte::new(linear);
-                let mut rgb = vec![0u8; texels.len() * 3];
-                rgb.par_chunks_mut(3 * 1024)
-                    .zip(texels.par_chunks(1024))
-                    .for_each(|(out, colors)| {
-                        for (o, c) in out.chunks_exact_mut(3).zip(colors) {
+                let mut rgb = vec![0u8; n * 3];
+                rgb.par_chunks_mut(3 * w.max(1))
+                    .enumerate()
+                    .for_each(|(y, row)| {
+                        for (x, o) in row.chunks_exact_mut(3).enumerate() {
+                            let c = texel(x as u32, y as u32);
                             o.copy_from_slice(&[nearest.of(c.x), nearest.of(c.y), nearest.of(c.z)]);
                         }
                     });
@@ -201,7 +205,18 @@ impl ImageData {
                     linear: linear.clone(),
                 }
             }
-            Texels::Floats(_) => Texels::Floats(texels.iter().map(|c| c.to_array()).collect()),
+            Texels::Floats(_) => {
+                let mut floats = vec![[0.0f32; 3]; n];
+                floats
+                    .par_chunks_mut(w.max(1))
+                    .enumerate()
+                    .for_each(|(y, row)| {
+                        for (x, o) in row.iter_mut().enumerate() {
+                            *o = texel(x as u32, y as u32).to_array();
+                        }
+                    });
+                Texels::Floats(floats)
+            }
         };
         ImageData {
             width,

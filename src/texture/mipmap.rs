@@ -10,30 +10,21 @@ use crate::math::{Color, Vec2};
 /// is 1 x 1. An odd size's last column (row) stands alone, weighed as the pairs.
 /// Rows of a level are made on every core (a scene's load waits for the pyramid).
 pub fn pyramid(img: &ImageData) -> Vec<ImageData> {
-    use rayon::prelude::*;
     let mut levels: Vec<ImageData> = Vec::new();
     let (mut w, mut h) = (img.width(), img.height());
     while w > 1 || h > 1 {
         let above = levels.last().unwrap_or(img);
         let (nw, nh) = (w.div_ceil(2), h.div_ceil(2));
-        let mut texels = vec![Color::ZERO; nw as usize * nh as usize];
-        texels
-            .par_chunks_mut(nw as usize)
-            .enumerate()
-            .for_each(|(y, row)| {
-                let y0 = 2 * y as u32;
-                let y1 = (y0 + 1).min(h - 1);
-                for (x, t) in row.iter_mut().enumerate() {
-                    let x0 = 2 * x as u32;
-                    let x1 = (x0 + 1).min(w - 1);
-                    let sum = above.texel(x0, y0)
-                        + above.texel(x1, y0)
-                        + above.texel(x0, y1)
-                        + above.texel(x1, y1);
-                    *t = sum * 0.25;
-                }
-            });
-        levels.push(ImageData::level_like(img, nw, nh, texels));
+        let level = ImageData::level_like(img, nw, nh, |x, y| {
+            let (x0, y0) = (2 * x, 2 * y);
+            let (x1, y1) = ((x0 + 1).min(w - 1), (y0 + 1).min(h - 1));
+            let sum = above.texel(x0, y0)
+                + above.texel(x1, y0)
+                + above.texel(x0, y1)
+                + above.texel(x1, y1);
+            sum * 0.25
+        });
+        levels.push(level);
         (w, h) = (nw, nh);
     }
     levels

@@ -42,12 +42,18 @@ pub(super) fn render_tiles(
             cancel: Some(&STOP),
             region: run.region,
         };
-        let r = snell::render::render_with(run.scene, run.integrator, &options, Some(&store));
+        // Tiles are kept (a copy of the picture) only for a checkpoint to save: a resumed
+        // render has one too.
+        let kept = run.checkpoint.map(|_| &store);
+        let r = snell::render::render_with(run.scene, run.integrator, &options, kept);
         finished.store(true, Ordering::SeqCst);
         r
     })
     .map_err(|e| e.to_string())?;
     let spp = run.scene.settings.spp;
+    // Only an unfinished render's checkpoint is saved.
+    let checkpoint = (run.checkpoint.is_some() && !rendered.complete())
+        .then(|| run.saver.checkpoint(store.snapshot(), None));
     Ok(Outcome {
         complete: rendered.complete(),
         spp,
@@ -56,7 +62,7 @@ pub(super) fn render_tiles(
             "{} of {} tiles rendered (the rest are black)",
             rendered.tiles_done, rendered.tiles_total
         ),
-        checkpoint: Some(run.saver.checkpoint(store.snapshot(), None)),
+        checkpoint,
         image: rendered.image,
         rays: rendered.rays,
         bad_samples: rendered.bad_samples,
