@@ -91,6 +91,13 @@ impl Path {
         // How the ray changes to the next pixels, while the path has met only mirrors and
         // glass (a rough bounce ends them, and textures are read at a point after it).
         let mut diff = RayDifferentials::camera(scene);
+        // A scene with glass that disperses light draws a wavelength for every sample; its
+        // weight joins the path's at the first surface whose index depends on it, and from
+        // there the path follows that wavelength.
+        let wavelength = scene
+            .disperses()
+            .then(|| crate::math::Wavelength::sample(sampler.next_1d()));
+        let mut dispersed = false;
         rays.camera += 1;
         loop {
             rays.deepest = rays.deepest.max(depth);
@@ -169,8 +176,12 @@ impl Path {
             scene.with_detail(&mut hit, &tex);
             let base = scene.base_color(&hit, &tex);
             let frame = Frame::from_axis(hit.shading_normal);
+            if let (Some(w), Some(_), false) = (wavelength, &m.dispersion, dispersed) {
+                beta *= w.weight;
+                dispersed = true;
+            }
             let v = Vertex {
-                bsdf: m.bsdf(&scene.textures, &tex, base),
+                bsdf: m.bsdf_at(&scene.textures, &tex, base, wavelength.map(|w| w.nm)),
                 wo: frame.to_local(-ray.dir),
                 frame,
                 ng: hit.normal,

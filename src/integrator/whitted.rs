@@ -9,7 +9,9 @@ use super::explain::{
 };
 use super::{Integrator, RayStats};
 use crate::light::{Falloff, Light};
-use crate::math::{Color, Ray, Vec3A, fresnel_dielectric, offset_ray_origin, reflect, refract};
+use crate::math::{
+    Color, Ray, Vec3A, Wavelength, fresnel_dielectric, offset_ray_origin, reflect, refract,
+};
 use crate::scene::{Hit, RayDifferentials, Scene, Skip};
 
 /// The Whitted integrator.
@@ -60,6 +62,11 @@ struct Segment {
     skip: Skip,
     /// How the ray changes to the next pixels, while it has only met mirrors and glass.
     diff: RayDifferentials,
+    /// The wavelength the tree follows below a surface whose index depends on it.
+    wavelength: Option<Wavelength>,
+    /// The camera ray's number for that wavelength, drawn where the tree first meets such a
+    /// surface (from the camera ray itself: Whitted's samples are fixed strata).
+    u_wavelength: f32,
 }
 
 impl Segment {
@@ -73,6 +80,12 @@ impl Segment {
             weight: Color::ONE,
             skip: Skip::NONE,
             diff: RayDifferentials::camera(scene),
+            wavelength: None,
+            u_wavelength: if scene.disperses() {
+                wavelength_number(ray)
+            } else {
+                0.0
+            },
         }
     }
 
@@ -117,6 +130,12 @@ impl Whitted {
                 RayDifferentials::camera(scene)
             } else {
                 RayDifferentials::None
+            },
+            wavelength: None,
+            u_wavelength: if scene.disperses() {
+                wavelength_number(ray)
+            } else {
+                0.0
             },
         };
         self.trace_from(scene, ray, &seg, rays, &mut NoRecord)
@@ -237,6 +256,16 @@ impl Whitted {
         rec: &mut R,
     ) -> Color {
         let m = scene.material_at(hit);
+        // Glass whose index depends on wavelength: the tree below follows one, the first
+        // such surface drawing it, and its light is weighed by that wavelength there.
+        let (ior, wavelength, drawn) = match (&m.dispersion, seg.wavelength) {
+            (Some(d), Some(w)) => (d.ior(w.nm), Some(w), None),
+            (Some(d), None) => {
+                let w = Wavelength::sample(seg.u_wavelength);
+                (d.ior(w.nm), Some(w), Some(w.weight))
+            }
+            (None, w) => (m.ior, w, None),
+        };
         let d = ray.dir;
         // The patch of surface the pixel sees, where a texture reads it (and then the hit's
         // texture point reads over its footprint) or a mirror or glass passes the
@@ -392,12 +421,12 @@ impl Whitted {
                     scene.settings.max_depth
                 ));
             }
-            return out;
+            return drawn.map_or(out, |w| out * w);
         }
         // The mirror's share in its tint (white but for metals), glass's by Fresnel.
         let mut reflect_weight = Color::splat((1.0 - t) * terms.reflectivity) * m.mirror_tint;
         if t > 0.0 {
-            let eta = if entering { 1.0 / m.ior } else { m.ior };
+            let eta = if entering { 1.0 / ior } else { ior };
             let cos_i = view.dot(ns);
             let fresnel = fresnel_dielectric(cos_i, eta);
             reflect_weight += Color::splat(t * fresnel);
@@ -437,6 +466,8 @@ impl Whitted {
                     medium: inside,
                     weight,
                     skip: scene.leaving(hit, !entering),
+                    wavelength,
+                    u_wavelength: seg.u_wavelength,
                     diff: passed_on().map_or(RayDifferentials::None, |(diff, dp, dn)| {
                         RayDifferentials::Known(diff.refracted(ray, dir, dp, dn, ns, eta))
                     }),
@@ -458,13 +489,15 @@ impl Whitted {
                 medium: seg.medium,
                 weight: reflect_weight,
                 skip: skip_above,
+                wavelength,
+                u_wavelength: seg.u_wavelength,
                 diff: passed_on().map_or(RayDifferentials::None, |(diff, dp, dn)| {
                     RayDifferentials::Known(diff.reflected(ray, dp, dn, ns))
                 }),
             };
             out += self.trace_from(scene, &r, &child, rays, rec) * reflect_weight;
         }
-        out
+        drawn.map_or(out, |w| out * w)
     }
 
     /// Fraction of light that reaches `origin` from `distance` away along `dir`: 0 behind an
@@ -634,6 +667,16 @@ fn phong_lobe(cos: f32, shininess: f32) -> f32 {
     } else {
         c.powf(shininess)
     }
+}
+
+/// A number in `[0, 1)` from a camera ray's bits, for the wavelength its tree follows: the
+/// same ray always gets the same one, neighbouring rays unrelated ones.
+fn wavelength_number(ray: &Ray) -> f32 {
+    let bits = |v: Vec3A| v.to_array().map(|x| x.to_bits() as u64);
+    let [a, b, c] = bits(ray.dir);
+    let [d, e, f] = bits(ray.origin);
+    let h = crate::math::hash_seed(&[a, b, c, d, e, f]);
+    (h >> 40) as f32 / (1u64 << 24) as f32
 }
 
 /// Transmittance `exp(-sigma * distance)` per channel.

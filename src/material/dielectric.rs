@@ -42,10 +42,11 @@ impl Dielectric {
         }
     }
 
-    /// The BSDF at a point.
-    pub fn bsdf(&self, m: &Material, textures: &[Texture], p: &TexturePoint) -> Bsdf {
+    /// The BSDF at a point, of index `ior` inside (the material's, or a dispersive one's at
+    /// the path's wavelength).
+    pub fn bsdf(&self, textures: &[Texture], p: &TexturePoint, ior: f32) -> Bsdf {
         Bsdf::Dielectric(bsdf::Dielectric {
-            eta: m.ior,
+            eta: ior,
             distribution: Ggx::isotropic(self.roughness.at(textures, p).clamp(0.0, 1.0)),
         })
     }

@@ -8,6 +8,7 @@ pub mod cutout;
 pub mod detail;
 pub mod dielectric;
 pub mod diffuse;
+pub mod dispersion;
 pub mod metallic;
 pub mod param;
 pub mod phong;
@@ -31,8 +32,12 @@ pub struct Material {
     pub terms: PhongTerms,
     /// Whitted: the colour of the mirror reflection (white but for metals).
     pub mirror_tint: Color,
-    /// Index of refraction of the inside of the solid.
+    /// Index of refraction of the inside of the solid (a dispersive one's at
+    /// [`dispersion::D_LINE_NM`], for whatever follows no wavelength).
     pub ior: f32,
+    /// How the index changes with wavelength, for a dielectric or Phong glass that
+    /// disperses light (`None`: the same index at every wavelength).
+    pub dispersion: Option<dispersion::Dispersion>,
     /// Beer-Lambert absorption coefficient per scene unit travelled inside, per channel.
     pub absorption: Color,
     /// What the path tracer scatters by.
@@ -175,12 +180,29 @@ impl Material {
     }
 
     /// The BSDF at a surface point, whose textured colour is `base`.
+    #[inline]
     pub fn bsdf(&self, textures: &[Texture], p: &TexturePoint, base: Color) -> Bsdf {
+        self.bsdf_at(textures, p, base, None)
+    }
+
+    /// [`Material::bsdf`] for light of wavelength `nm` nanometres, where the path follows
+    /// one: a dispersive material's index is then its index there.
+    pub fn bsdf_at(
+        &self,
+        textures: &[Texture],
+        p: &TexturePoint,
+        base: Color,
+        nm: Option<f32>,
+    ) -> Bsdf {
+        let ior = match (&self.dispersion, nm) {
+            (Some(d), Some(nm)) => d.ior(nm),
+            _ => self.ior,
+        };
         match &self.surface {
-            Surface::Phong => phong::bsdf(self, &self.terms_at(textures, p), base),
+            Surface::Phong => phong::bsdf(self, &self.terms_at(textures, p), base, ior),
             Surface::Diffuse => diffuse::bsdf(base),
             Surface::Conductor(c) => c.bsdf(base, textures, p),
-            Surface::Dielectric(d) => d.bsdf(self, textures, p),
+            Surface::Dielectric(d) => d.bsdf(textures, p, ior),
             Surface::Thin(ior) => thin::bsdf(*ior),
             Surface::Plastic(c) => c.bsdf(self, base, textures, p),
             Surface::Metallic(c) => c.bsdf(self, base, textures, p),
@@ -261,6 +283,7 @@ impl Material {
             terms: PhongTerms::DEFAULT,
             mirror_tint: Color::ONE,
             ior: 1.5,
+            dispersion: None,
             absorption: Color::ZERO,
             surface,
             emission,

@@ -13,15 +13,16 @@ use super::{Material, PhongTerms, alpha_of};
 use crate::bsdf::{Bsdf, PhongMix};
 use crate::math::Color;
 
-/// The BSDF at a point whose colour is `base` and Phong terms `terms`.
-pub fn bsdf(m: &Material, terms: &PhongTerms, base: Color) -> Bsdf {
+/// The BSDF at a point whose colour is `base` and Phong terms `terms`, its glass of index
+/// `ior` (the material's, or a dispersive one's at the path's wavelength).
+pub fn bsdf(m: &Material, terms: &PhongTerms, base: Color, ior: f32) -> Bsdf {
     let r = (base * terms.diffuse).clamp(Color::ZERO, Color::ONE);
     let highlight = (terms.specular.max_element() > 0.0).then(|| alpha_of(terms.shininess));
     Bsdf::Phong(PhongMix::new(
         r,
         highlight,
         m.mirror_tint.clamp(Color::ZERO, Color::ONE),
-        m.ior,
+        ior,
         terms.reflectivity,
         terms.transparency,
     ))

@@ -17,6 +17,7 @@ mod rng;
 pub mod sampling;
 pub mod spectrum;
 mod transform;
+pub mod wavelength;
 
 pub use aabb::Aabb;
 pub use frame::Frame;
@@ -24,6 +25,7 @@ pub use glam::{Vec2, Vec3, Vec3A};
 pub use offset::offset_ray_origin;
 pub use rng::{Rng, hash_seed};
 pub use transform::Transform;
+pub use wavelength::Wavelength;
 
 /// Largest magnitude of any number a scene or a mesh file may give: its square (1e30) still
 /// fits in an `f32`, so lengths, areas and quadratics cannot overflow.

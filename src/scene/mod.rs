@@ -128,6 +128,8 @@ pub struct Scene {
     cutouts: Vec<bool>,
     /// Whether any object has.
     any_cutout: bool,
+    /// Whether a material disperses light (see [`Scene::disperses`]).
+    dispersive: bool,
     /// The files the scene read besides itself (textures, meshes, MTL files and their
     /// maps), sorted: what a preview watches for changes.
     pub files: Vec<PathBuf>,
@@ -218,6 +220,14 @@ impl Scene {
             Leaving::Outside if outward => Skip::object(hit.object),
             _ => Skip::NONE,
         }
+    }
+
+    /// Whether some material's index changes with wavelength: the physical integrators then
+    /// draw a wavelength for every sample (and paths that meet such a material follow it),
+    /// and scenes without one draw none and pay nothing.
+    #[inline]
+    pub fn disperses(&self) -> bool {
+        self.dispersive
     }
 
     /// [`Scene::closest_hit`] of each of `rays` (any number; `out` as long), found a packet

@@ -8,6 +8,7 @@ mod camera;
 mod cli;
 mod csg;
 mod detail;
+mod dispersion;
 mod docs;
 mod environment;
 mod explain;

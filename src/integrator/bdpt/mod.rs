@@ -31,6 +31,9 @@ pub(crate) struct Context<'a> {
     scene: &'a Scene,
     view: LightView<'a>,
     mis: MisHeuristic,
+    /// The sample's wavelength, in a scene that disperses light: both subpaths follow it
+    /// wherever an index depends on it.
+    nm: Option<f32>,
 }
 
 impl Context<'_> {
@@ -104,10 +107,14 @@ impl Bdpt {
         splat: &mut impl FnMut(f32, f32, Color),
         each: &mut impl FnMut(&Strategy),
     ) -> Color {
+        let wavelength = scene
+            .disperses()
+            .then(|| crate::math::Wavelength::sample(sampler.next_1d()));
         let ctx = Context {
             scene,
             view: *view,
             mis: scene.settings.integrator.mis,
+            nm: wavelength.map(|w| w.nm),
         };
         walk::camera_path(&ctx, ray, sampler, rays, &mut paths.camera);
         walk::light_path(&ctx, sampler, rays, &mut paths.light);
@@ -121,7 +128,15 @@ impl Bdpt {
                 if s + t < 2 || (s == 1 && t == 1) || s + t - 1 > max_depth {
                     continue;
                 }
-                let joined = connect::join(&ctx, light, camera, s, t, sampler, rays);
+                let mut joined = connect::join(&ctx, light, camera, s, t, sampler, rays);
+                // A path through a dispersive surface carries the wavelength's weight (once,
+                // whichever side met it).
+                if let Some(w) = wavelength
+                    && (camera[t - 1].dispersed
+                        || (s > 0 && light.get(s - 1).is_some_and(|v| v.dispersed)))
+                {
+                    joined.light *= w.weight;
+                }
                 if joined.light == Color::ZERO {
                     continue;
                 }

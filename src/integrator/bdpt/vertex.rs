@@ -72,6 +72,9 @@ pub(super) struct Vertex {
     pub ng: Vec3A,
     /// The subpath's throughput up to here.
     pub beta: Color,
+    /// Whether the subpath met a surface whose index depends on wavelength, here or before:
+    /// a path that joins it is then weighed by the sample's wavelength.
+    pub dispersed: bool,
     /// The light it sends toward the previous vertex (camera subpaths that meet an
     /// emitter or leave the scene).
     pub le: Color,
@@ -96,6 +99,7 @@ impl Vertex {
             point,
             ng,
             beta,
+            dispersed: false,
             le: Color::ZERO,
             pdf_fwd: 0.0,
             pdf_rev: 0.0,

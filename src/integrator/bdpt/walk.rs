@@ -146,7 +146,9 @@ impl Walk {
             rays.deepest = rays.deepest.max(depth + 1);
             let Some(mut hit) = scene.closest_hit_skipping(&ray, f32::INFINITY, skip) else {
                 if self.side == Side::Eye {
-                    path.push(escaped(ctx, &ray, depth, beta, pdf));
+                    let mut v = escaped(ctx, &ray, depth, beta, pdf);
+                    v.dispersed = path.last().is_some_and(|p| p.dispersed);
+                    path.push(v);
                 }
                 break;
             };
@@ -166,7 +168,7 @@ impl Walk {
             scene.with_detail(&mut hit, &tex);
             let base = scene.base_color(&hit, &tex);
             let frame = Frame::from_axis(hit.shading_normal);
-            let bsdf = m.bsdf(&scene.textures, &tex, base);
+            let bsdf = m.bsdf_at(&scene.textures, &tex, base, ctx.nm);
             let wo_world = -ray.dir;
             let surface = Surface {
                 hit,
@@ -185,6 +187,7 @@ impl Walk {
             );
             v.le = le;
             let prev = path.last().expect("a walk starts from a vertex");
+            v.dispersed = prev.dispersed || (ctx.nm.is_some() && m.dispersion.is_some());
             v.pdf_fwd = prev.to_area(pdf, &v);
             path.push(v);
             depth += 1;

@@ -85,9 +85,12 @@ pub struct MaterialDef {
     /// Phong: transmitted fraction in [0, 1] (default 0), a number or a texture's name.
     pub transparency: Option<ScalarDef>,
     /// Index of refraction of the inside (phong, dielectric, thin) or of the coat
-    /// (plastic, metallic); default 1.5. A number: it belongs to the solid, not to a point of its
-    /// surface.
-    pub ior: Option<f32>,
+    /// (plastic, metallic); default 1.5. A number, a named glass (`"BK7"`, `"fused silica"`,
+    /// `"SF11"`, `"diamond"`, `"water"`) or a formula in wavelength (`{ cauchy = [a, b] }`,
+    /// `{ sellmeier = [B1, B2, B3, C1, C2, C3] }`, b and C in µm²): a phong or dielectric
+    /// material with a glass or a formula disperses light; the others take its index at
+    /// 587.6 nm. Not textured: it belongs to the solid, not to a point of its surface.
+    pub ior: Option<super::IorDef>,
     /// Beer-Lambert absorption per scene unit travelled inside, per channel (phong,
     /// dielectric); default 0. A colour: it belongs to the solid's inside.
     pub absorption: Option<ColorDef>,

@@ -8,6 +8,7 @@ mod animation;
 mod constraints;
 mod environment;
 mod integrator;
+mod ior;
 mod material;
 mod object;
 mod texture;
@@ -18,6 +19,7 @@ pub use animation::{
 };
 pub use environment::EnvironmentDef;
 pub use integrator::{IntegratorDef, IntegratorKind, MisHeuristic, SamplerDef};
+pub use ior::{DispersionDef, IorDef};
 pub use material::{MaterialDef, MaterialKind};
 pub use object::*;
 pub use texture::{ColorSpaceDef, MappingDef, TextureDef, WrapDef};

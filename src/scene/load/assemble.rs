@@ -292,6 +292,7 @@ impl Builder<'_> {
                     .any(|&t| !matches!(textures[t].pattern, Pattern::Solid(_)))
             })
             .collect();
+        let dispersive = materials.iter().any(|m| m.dispersion.is_some());
         let mut scene = Scene {
             camera,
             settings,
@@ -317,6 +318,7 @@ impl Builder<'_> {
             needs_uv1,
             textured,
             any_cutout: cutouts.contains(&true),
+            dispersive,
             cutouts,
             stats: std::mem::take(&mut self.stats),
             limits: self.limits,

@@ -69,15 +69,18 @@ impl Builder<'_> {
                 "add `emission = [r, g, b]`, or remove `two_sided`",
             );
         }
-        let ior = m
+        let (ior, dispersion) = m
             .ior
-            .map_or(DEFAULT_IOR, |x| self.positive(x, &path.key("ior")));
+            .as_ref()
+            .and_then(|d| self.ior(d, &path.key("ior"), m.kind))
+            .unwrap_or((DEFAULT_IOR, None));
         let absorption = m
             .absorption
             .map_or(Color::ZERO, |c| self.color(c, &path.key("absorption")));
         let detail = self.detail(m, path, tex);
         let mut out = self.surface(m, path, tex, (texture, color), emission, ior, absorption);
         out.detail = detail;
+        out.dispersion = dispersion;
         out
     }
 

@@ -19,6 +19,7 @@ mod csg;
 mod emitters;
 mod environment;
 mod group;
+mod ior;
 mod light;
 mod lpe;
 mod material;

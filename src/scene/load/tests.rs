@@ -130,3 +130,76 @@ fn json_null_is_taken_for_keys_without_a_default_only() {
         );
     }
 }
+
+/// A dispersive `ior`'s mistakes, each at the key: a glass name that names none (with the
+/// nearest), a formula with the wrong number of coefficients, one whose index drops below 1
+/// or meets a resonance in 360-830 nm, and an unknown formula.
+#[test]
+fn dispersive_indices_are_checked_at_their_key() {
+    let glass = |ior: &str| {
+        errors(&format!(
+            "[camera]\nlook_at = [0, 0, -1]\n[materials.g]\ntype = \"dielectric\"\nior = {ior}\n"
+        ))
+    };
+    let cases = [
+        (
+            "\"diamnd\"",
+            "t.toml:5:7: materials.g.ior: no glass named `diamnd`",
+            "did you mean `diamond`?",
+        ),
+        (
+            "\"crystal\"",
+            "no glass named `crystal`",
+            "BK7, fused silica, SF11, diamond, water",
+        ),
+        (
+            "{ cauchy = [1.5] }",
+            "t.toml:5:7: materials.g.ior: a Cauchy index takes 2 coefficients, 1 given",
+            "[a, b]",
+        ),
+        (
+            "{ sellmeier = [1, 2, 3] }",
+            "a Sellmeier index takes 6 coefficients, 3 given",
+            "[B1, B2, B3, C1, C2, C3]",
+        ),
+        (
+            "{ cauchy = [0.9, 0.01] }",
+            "this index is 0.97",
+            "at least 1 everywhere from 360 to 830 nm",
+        ),
+        (
+            "{ sellmeier = [1, 0, 0, 0.25, 0, 0] }",
+            "is not a real number (a resonance",
+            "micrometres",
+        ),
+        (
+            "{ abbe = [1.5, 60] }",
+            "unknown formula `abbe`",
+            "sellmeier",
+        ),
+    ];
+    for (ior, message, help) in cases {
+        let e = glass(ior);
+        assert!(e.contains(message) && e.contains(help), "{ior}: {e}");
+    }
+    assert_eq!(cases.len(), 7);
+    // Named glasses, formulas and numbers load; plastic takes a glass's index at 587.6 nm
+    // without dispersing.
+    let ok = |ior: &str, kind: &str| {
+        load_str(
+            &format!(
+                "[camera]\nlook_at = [0, 0, -1]\n[materials.g]\ntype = \"{kind}\"\nior = {ior}\n"
+            ),
+            Path::new("t.toml"),
+            Path::new("."),
+            Format::Toml,
+        )
+        .unwrap_or_else(|e| panic!("{ior}: {e}"))
+    };
+    let s = ok("\"BK7\"", "dielectric");
+    assert!(s.disperses() && (s.materials[0].ior - 1.5168).abs() < 1e-3);
+    assert!(ok("{ sellmeier = [1.03961212, 0.231792344, 1.01046945, 0.00600069867, 0.0200179144, 103.560653] }", "phong").disperses());
+    assert!(!ok("1.5", "dielectric").disperses());
+    let p = ok("\"SF11\"", "plastic");
+    assert!(!p.disperses() && (p.materials[0].ior - 1.7847).abs() < 1e-3);
+}
