@@ -42,6 +42,7 @@ render spot scenes/spot.toml --width 640 --height 480
 render field scenes/field.toml --width 960 --height 540
 render cornell scenes/cornell.toml --spp 4096
 render caustics scenes/caustics.toml
+render prism scenes/prism.toml
 render bdpt/cornell scenes/cornell.toml --integrator bdpt --aov strategies --width 160 --height 160 --spp 256
 render caustics-path scenes/caustics.toml --integrator path
 render caustics-light scenes/caustics.toml --integrator light

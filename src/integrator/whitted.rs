@@ -62,8 +62,10 @@ struct Segment {
     skip: Skip,
     /// How the ray changes to the next pixels, while it has only met mirrors and glass.
     diff: RayDifferentials,
-    /// The wavelength the tree follows below a surface whose index depends on it.
-    wavelength: Option<Wavelength>,
+    /// The wavelength (nm) the tree follows below a surface whose index depends on it; 0
+    /// where it follows none (a number, not an `Option` of a [`Wavelength`]: every ray
+    /// carries it, and a larger segment cost Whitted's rays time).
+    nm: f32,
     /// The camera ray's number for that wavelength, drawn where the tree first meets such a
     /// surface (from the camera ray itself: Whitted's samples are fixed strata).
     u_wavelength: f32,
@@ -80,7 +82,7 @@ impl Segment {
             weight: Color::ONE,
             skip: Skip::NONE,
             diff: RayDifferentials::camera(scene),
-            wavelength: None,
+            nm: 0.0,
             u_wavelength: if scene.disperses() {
                 wavelength_number(ray)
             } else {
@@ -131,7 +133,7 @@ impl Whitted {
             } else {
                 RayDifferentials::None
             },
-            wavelength: None,
+            nm: 0.0,
             u_wavelength: if scene.disperses() {
                 wavelength_number(ray)
             } else {
@@ -258,13 +260,13 @@ impl Whitted {
         let m = scene.material_at(hit);
         // Glass whose index depends on wavelength: the tree below follows one, the first
         // such surface drawing it, and its light is weighed by that wavelength there.
-        let (ior, wavelength, drawn) = match (&m.dispersion, seg.wavelength) {
-            (Some(d), Some(w)) => (d.ior(w.nm), Some(w), None),
-            (Some(d), None) => {
+        let (ior, nm, drawn) = match &m.dispersion {
+            None => (m.ior, seg.nm, None),
+            Some(d) if seg.nm > 0.0 => (d.ior(seg.nm), seg.nm, None),
+            Some(d) => {
                 let w = Wavelength::sample(seg.u_wavelength);
-                (d.ior(w.nm), Some(w), Some(w.weight))
+                (d.ior(w.nm), w.nm, Some(w.weight))
             }
-            (None, w) => (m.ior, w, None),
         };
         let d = ray.dir;
         // The patch of surface the pixel sees, where a texture reads it (and then the hit's
@@ -466,7 +468,7 @@ impl Whitted {
                     medium: inside,
                     weight,
                     skip: scene.leaving(hit, !entering),
-                    wavelength,
+                    nm,
                     u_wavelength: seg.u_wavelength,
                     diff: passed_on().map_or(RayDifferentials::None, |(diff, dp, dn)| {
                         RayDifferentials::Known(diff.refracted(ray, dir, dp, dn, ns, eta))
@@ -489,7 +491,7 @@ impl Whitted {
                 medium: seg.medium,
                 weight: reflect_weight,
                 skip: skip_above,
-                wavelength,
+                nm,
                 u_wavelength: seg.u_wavelength,
                 diff: passed_on().map_or(RayDifferentials::None, |(diff, dp, dn)| {
                     RayDifferentials::Known(diff.reflected(ray, dp, dn, ns))

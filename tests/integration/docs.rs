@@ -119,7 +119,7 @@ fn every_picture_is_made_by_the_script_with_the_samples_its_caption_gives() {
     assert_eq!(sized, lines.len());
     assert_eq!(
         (lines.len(), captions),
-        (29, 7),
+        (30, 7),
         "pictures made, captions with samples"
     );
     // The lab's pictures (`lab NAME ARGS...`): three panels of 80 x 40 bins, 6 pixels a bin,

@@ -1,6 +1,8 @@
 //! A material's `ior`: a number, a named glass, or a formula in wavelength, with its
 //! hand-written deserializer and schema.
 
+use crate::material::dispersion::{Dispersion, NAMED};
+use crate::scene::diag::name_help;
 use schemars::{JsonSchema, Schema, SchemaGenerator, json_schema};
 use serde::de::{self, Deserializer, MapAccess, Visitor};
 use serde::{Deserialize, Serialize};
@@ -20,15 +22,14 @@ pub enum IorDef {
     Formula(DispersionDef),
 }
 
-/// An index that changes with wavelength, by its coefficients (their number is checked
-/// where the scene is built, at the key).
+/// An index that changes with wavelength, by its coefficients (counted by the parser).
 #[derive(Clone, Debug, PartialEq, Serialize)]
 #[serde(rename_all = "lowercase")]
 pub enum DispersionDef {
     /// `n = a + b / λ²`: `[a, b]`, b in µm².
-    Cauchy(Vec<f32>),
+    Cauchy([f32; 2]),
     /// `n² = 1 + Σ Bᵢ λ² / (λ² - Cᵢ)`: `[B1, B2, B3, C1, C2, C3]`, C in µm².
-    Sellmeier(Vec<f32>),
+    Sellmeier([f32; 6]),
 }
 
 const FORMULAS: &str = "{ cauchy = [a, b] } or { sellmeier = [B1, B2, B3, C1, C2, C3] } (b and C in square micrometres)";
@@ -54,7 +55,16 @@ impl<'de> Deserialize<'de> for IorDef {
                 Ok(IorDef::Value(v as f32))
             }
             fn visit_str<E: de::Error>(self, v: &str) -> Result<IorDef, E> {
-                Ok(IorDef::Named(v.to_string()))
+                // Glass names are a closed set, as the schema says: an unknown one is refused
+                // here, with the nearest.
+                if Dispersion::named(v).is_some() {
+                    return Ok(IorDef::Named(v.to_string()));
+                }
+                let names = NAMED.iter().map(|(n, _)| *n);
+                Err(de::Error::custom(format!(
+                    "no glass named `{v}`: {}",
+                    name_help(v, names, "the named glasses", "")
+                )))
             }
             fn visit_map<A: MapAccess<'de>>(self, mut map: A) -> Result<IorDef, A::Error> {
                 let Some(key) = map.next_key::<String>()? else {
@@ -62,15 +72,25 @@ impl<'de> Deserialize<'de> for IorDef {
                         "an empty table: give {FORMULAS}"
                     )));
                 };
-                let coefficients: Vec<f32> = map.next_value()?;
-                let formula = match key.as_str() {
-                    "cauchy" => DispersionDef::Cauchy(coefficients),
-                    "sellmeier" => DispersionDef::Sellmeier(coefficients),
+                let (name, want, form) = match key.as_str() {
+                    "cauchy" => ("Cauchy", 2, "[a, b]"),
+                    "sellmeier" => ("Sellmeier", 6, "[B1, B2, B3, C1, C2, C3]"),
                     other => {
                         return Err(de::Error::custom(format!(
                             "unknown formula `{other}`: give {FORMULAS}"
                         )));
                     }
+                };
+                let c: Vec<f32> = map.next_value()?;
+                if c.len() != want {
+                    return Err(de::Error::custom(format!(
+                        "a {name} index takes {want} coefficients, {form} (in micrometres squared where they have units): {} given",
+                        c.len()
+                    )));
+                }
+                let formula = match want {
+                    2 => DispersionDef::Cauchy([c[0], c[1]]),
+                    _ => DispersionDef::Sellmeier([c[0], c[1], c[2], c[3], c[4], c[5]]),
                 };
                 if let Some(more) = map.next_key::<String>()? {
                     return Err(de::Error::custom(format!(

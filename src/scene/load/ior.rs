@@ -1,11 +1,11 @@
 //! A material's `ior` to its index and, for glass that disperses light, how the index
-//! changes with wavelength: a number, a named glass (with a did-you-mean), or a Cauchy or
-//! Sellmeier formula whose coefficients are counted and whose index must stay at least 1
-//! over the visible range.
+//! changes with wavelength: a number, a named glass, or a Cauchy or Sellmeier formula (the
+//! parser refuses unknown names and miscounted coefficients) whose index must stay at least
+//! 1 over the visible range.
 
 use super::Builder;
-use crate::material::dispersion::{D_LINE_NM, Dispersion, NAMED};
-use crate::scene::diag::{DocPath, name_help};
+use crate::material::dispersion::{D_LINE_NM, Dispersion};
+use crate::scene::diag::DocPath;
 use crate::scene::format::{DispersionDef, IorDef, MaterialKind};
 
 impl Builder<'_> {
@@ -21,39 +21,14 @@ impl Builder<'_> {
     ) -> Option<(f32, Option<Dispersion>)> {
         let dispersion = match def {
             IorDef::Value(v) => return Some((self.positive(*v, path), None)),
-            IorDef::Named(name) => match Dispersion::named(name) {
-                Some(d) => d,
-                None => {
-                    self.error_help(
-                        path.clone(),
-                        format!("no glass named `{name}`"),
-                        name_help(name, NAMED.iter().map(|(n, _)| *n), "the named glasses", ""),
-                    );
-                    return None;
-                }
-            },
-            IorDef::Formula(f) => {
-                let (name, c, want, form) = match f {
-                    DispersionDef::Cauchy(c) => ("Cauchy", c, 2, "[a, b]"),
-                    DispersionDef::Sellmeier(c) => ("Sellmeier", c, 6, "[B1, B2, B3, C1, C2, C3]"),
-                };
-                if c.len() != want {
-                    self.error_help(
-                        path.clone(),
-                        format!(
-                            "a {name} index takes {want} coefficients, {} given",
-                            c.len()
-                        ),
-                        format!("give {form} (in micrometres squared where they have units)"),
-                    );
-                    return None;
-                }
-                match f {
-                    DispersionDef::Cauchy(_) => Dispersion::Cauchy { a: c[0], b: c[1] },
-                    DispersionDef::Sellmeier(_) => Dispersion::Sellmeier {
-                        b: [c[0], c[1], c[2]],
-                        c: [c[3], c[4], c[5]],
-                    },
+            // The parser took only the names of `NAMED`.
+            IorDef::Named(name) => Dispersion::named(name)?,
+            // The parser counted the coefficients.
+            IorDef::Formula(DispersionDef::Cauchy([a, b])) => Dispersion::Cauchy { a: *a, b: *b },
+            IorDef::Formula(DispersionDef::Sellmeier([b1, b2, b3, c1, c2, c3])) => {
+                Dispersion::Sellmeier {
+                    b: [*b1, *b2, *b3],
+                    c: [*c1, *c2, *c3],
                 }
             }
         };

@@ -154,13 +154,13 @@ fn dispersive_indices_are_checked_at_their_key() {
         ),
         (
             "{ cauchy = [1.5] }",
-            "t.toml:5:7: materials.g.ior: a Cauchy index takes 2 coefficients, 1 given",
-            "[a, b]",
+            "t.toml:5:7: materials.g.ior: a Cauchy index takes 2 coefficients",
+            "[a, b] (in micrometres squared where they have units): 1 given",
         ),
         (
             "{ sellmeier = [1, 2, 3] }",
-            "a Sellmeier index takes 6 coefficients, 3 given",
-            "[B1, B2, B3, C1, C2, C3]",
+            "a Sellmeier index takes 6 coefficients",
+            "[B1, B2, B3, C1, C2, C3] (in micrometres squared where they have units): 3 given",
         ),
         (
             "{ cauchy = [0.9, 0.01] }",

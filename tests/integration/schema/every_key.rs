@@ -108,18 +108,18 @@ normal_map = "photo"
 normal_scale = 0.5
 [materials.pane]
 type = "thin"
-ior = 1.5
+ior = { cauchy = [1.5, 0.004] }
 bump = "wrapped"
 bump_height = 0.01
 [materials.coat]
 type = "plastic"
 color = [0.8, 0.1, 0.1]
-ior = 1.5
+ior = { sellmeier = [1.03961212, 0.231792344, 1.01046945, 0.00600069867, 0.0200179144, 103.560653] }
 roughness = 0.05
 [materials.blend]
 type = "metallic"
 color = [0.9, 0.6, 0.2]
-ior = 1.5
+ior = "BK7"
 roughness = 0.2
 metallic = "bands"
 [materials.lamp]
