@@ -30,6 +30,18 @@ pub fn chosen(kind: IntegratorKind) -> &'static dyn Integrator {
     }
 }
 
+/// Where a batch of camera rays starts: its first sample's pixel and index in the pixel
+/// (the rest follow in order).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct BatchStart {
+    /// The pixel's column.
+    pub x: u32,
+    /// The pixel's row.
+    pub y: u32,
+    /// The first ray's sample index in the pixel.
+    pub index: u32,
+}
+
 /// Computes the colour seen along a camera ray.
 pub trait Integrator: Sync {
     /// Linear RGB arriving along `ray` (a camera ray, unit direction). Every ray traced for
@@ -37,9 +49,18 @@ pub trait Integrator: Sync {
     fn radiance(&self, scene: &Scene, ray: &Ray, rays: &mut RayStats) -> Color;
 
     /// [`Integrator::radiance`] of each ray of `batch`, into `out` (as long as `batch`): the
-    /// camera rays of one pixel, which an integrator may trace together (the same colours,
-    /// to the bit, as one ray at a time).
-    fn radiance_batch(&self, scene: &Scene, batch: &[Ray], out: &mut [Color], rays: &mut RayStats) {
+    /// camera rays of one pixel, samples `first.index`, `first.index + 1`... of pixel
+    /// `(first.x, first.y)`, which an integrator may trace together (the same colours, to
+    /// the bit, as one ray at a time where it draws nothing from the samples' indices).
+    fn radiance_batch(
+        &self,
+        scene: &Scene,
+        batch: &[Ray],
+        first: BatchStart,
+        out: &mut [Color],
+        rays: &mut RayStats,
+    ) {
+        let _ = first;
         for (ray, o) in batch.iter().zip(out) {
             *o = self.radiance(scene, ray, rays);
         }

@@ -7,7 +7,7 @@ use super::explain::{
     Crossing, FresnelRecord, HitRecord, LightRecord, MaterialTerms, NoRecord, RayKind, Recorder,
     ShadowRecord, uv2,
 };
-use super::{Integrator, RayStats};
+use super::{BatchStart, Integrator, RayStats};
 use crate::light::{Falloff, Light};
 use crate::math::{
     Color, Ray, Vec3A, Wavelength, fresnel_dielectric, offset_ray_origin, reflect, refract,
@@ -32,15 +32,29 @@ impl Integrator for Whitted {
     }
 
     /// The first hits of the whole batch as packets ([`Scene::closest_hits`]), then each
-    /// ray's shading and the rest of its tree, in order.
-    fn radiance_batch(&self, scene: &Scene, batch: &[Ray], out: &mut [Color], rays: &mut RayStats) {
+    /// ray's shading and the rest of its tree, in order. In a scene with dispersive glass,
+    /// sample `k` of a pixel follows the wavelength of `k` in a sequence spread evenly over
+    /// the visible range (see [`wavelength_number`]).
+    fn radiance_batch(
+        &self,
+        scene: &Scene,
+        batch: &[Ray],
+        first: BatchStart,
+        out: &mut [Color],
+        rays: &mut RayStats,
+    ) {
         const N: usize = 16;
+        let mut index = first.index;
         for (batch, out) in batch.chunks(N).zip(out.chunks_mut(N)) {
             let mut found: [Option<Hit>; N] = [None; N];
             let found = &mut found[..batch.len()];
             scene.closest_hits(batch, found);
             for ((ray, f), o) in batch.iter().zip(found.iter()).zip(out.iter_mut()) {
-                let seg = Segment::camera(scene, ray);
+                let mut seg = Segment::camera(scene, ray);
+                if scene.disperses() {
+                    seg.u_wavelength = wavelength_number(first.x, first.y, index);
+                }
+                index += 1;
                 seg.begin(ray, rays, &mut NoRecord);
                 *o = self.trace_found(scene, ray, f, &seg, rays, &mut NoRecord);
             }
@@ -84,7 +98,7 @@ impl Segment {
             diff: RayDifferentials::camera(scene),
             nm: 0.0,
             u_wavelength: if scene.disperses() {
-                wavelength_number(ray)
+                ray_wavelength_number(ray)
             } else {
                 0.0
             },
@@ -135,7 +149,7 @@ impl Whitted {
             },
             nm: 0.0,
             u_wavelength: if scene.disperses() {
-                wavelength_number(ray)
+                ray_wavelength_number(ray)
             } else {
                 0.0
             },
@@ -671,14 +685,27 @@ fn phong_lobe(cos: f32, shininess: f32) -> f32 {
     }
 }
 
-/// A number in `[0, 1)` from a camera ray's bits, for the wavelength its tree follows: the
-/// same ray always gets the same one, neighbouring rays unrelated ones.
-fn wavelength_number(ray: &Ray) -> f32 {
+/// A number in `[0, 1)` from a camera ray's bits, for the wavelength its tree follows where
+/// the ray is not one of a pixel's samples (`snell explain`'s, [`Whitted::trace`]'s): the
+/// same ray always gets the same one.
+fn ray_wavelength_number(ray: &Ray) -> f32 {
     let bits = |v: Vec3A| v.to_array().map(|x| x.to_bits() as u64);
     let [a, b, c] = bits(ray.dir);
     let [d, e, f] = bits(ray.origin);
     let h = crate::math::hash_seed(&[a, b, c, d, e, f]);
     (h >> 40) as f32 / (1u64 << 24) as f32
+}
+
+/// The number for the wavelength of sample `index` of pixel `(x, y)`: the golden ratio's
+/// sequence from a start of the pixel's own, so that a pixel's samples, and any run of them
+/// (those of its strata a glass edge covers), spread their wavelengths evenly over the
+/// visible range instead of at random: a dispersive glass's fire without the colour noise
+/// of independent draws.
+fn wavelength_number(x: u32, y: u32, index: u32) -> f32 {
+    let start = crate::math::hash_seed(&[x as u64, y as u64, 0x5eed]);
+    let shift = (start >> 40) as f64 / (1u64 << 24) as f64;
+    let u = (shift + index as f64 * 0.618_033_988_749_894_9).fract();
+    (u as f32).min(1.0 - f32::EPSILON)
 }
 
 /// Transmittance `exp(-sigma * distance)` per channel.

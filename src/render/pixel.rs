@@ -61,9 +61,10 @@ impl PixelJob<'_> {
         let (mut sum, mut weight, mut unsigned, mut sum_sq) =
             (Color::ZERO, 0.0f32, Color::ZERO, 0.0f32);
         let mut colors = [Color::ZERO; CAMERA_BATCH];
-        let mut trace = |batch: &[Ray], signs: &[f32]| {
+        let mut trace = |batch: &[Ray], first: u32, signs: &[f32]| {
             let colors = &mut colors[..batch.len()];
-            integrator.radiance_batch(scene, batch, colors, rays);
+            let start = crate::integrator::BatchStart { x, y, index: first };
+            integrator.radiance_batch(scene, batch, start, colors, rays);
             // The sums in locals for the batch, not through the closure's references, so
             // that they stay in registers across the loop.
             let (mut s, mut w, mut u, mut q) = (sum, weight, unsigned, sum_sq);
@@ -109,12 +110,12 @@ impl PixelJob<'_> {
             len += 1;
             if len == CAMERA_BATCH {
                 make(&film, &mut batch);
-                trace(&batch, &signs);
+                trace(&batch, film[0].2, &signs);
                 len = 0;
             }
         });
         make(&film[..len], &mut batch[..len]);
-        trace(&batch[..len], &signs[..len]);
+        trace(&batch[..len], film[0].2, &signs[..len]);
         pixel.add_sums(sum, weight, unsigned, sum_sq, s.spp);
     }
 
