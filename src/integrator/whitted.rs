@@ -34,7 +34,7 @@ impl Integrator for Whitted {
     /// The first hits of the whole batch as packets ([`Scene::closest_hits`]), then each
     /// ray's shading and the rest of its tree, in order. In a scene with dispersive glass,
     /// sample `k` of a pixel follows the wavelength of `k` in a sequence spread evenly over
-    /// the visible range (see [`wavelength_number`]).
+    /// the visible range (see `wavelength_number`).
     fn radiance_batch(
         &self,
         scene: &Scene,
