@@ -65,6 +65,7 @@ INTRO = {
  'src/scene/gltf/': 'A glTF file as a scene places it: its meshes, materials, cameras and lights as snell\'s.',
  'src/scene/detail/': 'Normal and bump maps applied at a hit.',
  'src/integrator/': 'Ways of turning a camera ray into a colour: Whitted, the path tracer, the debug views, and the recorders behind `snell explain`.',
+ 'src/integrator/whitted/': 'Whitted-style ray tracing (the default integrator): the recursion of reflected and refracted rays with Phong direct light, and its shadow rays through transparent objects.',
  'src/integrator/bdpt/': 'Bidirectional path tracing (`[integrator] type = "bdpt"`): the two subpaths, their vertices with the densities both ways, the joins, and the MIS weight of each strategy.',
  'src/render/bdpt/': 'The bidirectionally path-traced render: camera samples to the film and light paths joined to the eye as splats, in passes; its tests against the path tracer and the caustic\'s energy.',
  'src/lpe/': 'Light path expressions: which of a pixel\'s light came by which kind of path (`--lpe`, `[[image.lpe]]`, docs/lpe.md), from the text of an expression to the table a render steps through.',
@@ -105,7 +106,7 @@ PAGE = {
 }
 ORDER = ['src/','src/math/','src/sampler/','src/geometry/','src/geometry/mesh/','src/accel/','src/accel/wide/',
  'src/bsdf/','src/material/','src/texture/','src/light/','src/light/sky/','src/mesh_file/','src/mesh_file/obj/','src/mesh_file/ply/','src/mesh_file/gltf/',
- 'src/scene/','src/scene/format/','src/scene/load/','src/scene/gltf/','src/scene/detail/','src/integrator/','src/integrator/bdpt/','src/lpe/',
+ 'src/scene/','src/scene/format/','src/scene/load/','src/scene/gltf/','src/scene/detail/','src/integrator/','src/integrator/whitted/','src/integrator/bdpt/','src/lpe/',
  'src/film/','src/render/','src/render/bdpt/','src/render/light/','src/render/lpe/','src/output/','src/bin/snell/','src/bin/snell/render/','src/bin/snell/serve/','src/bin/snell/serve/page/',
  'tests/integration/','tests/integration/cli/','tests/integration/schema/','tests/integration/serve/','benches/','examples/','bench/','fuzz/fuzz_targets/','python/snell_farm/','python/tests/','snell-py/src/','snell-py/python/snell/','snell-py/tests/']
 groups=collections.OrderedDict((d,[]) for d in ORDER)

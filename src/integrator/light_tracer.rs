@@ -124,10 +124,8 @@ impl LightTracer {
         let mut beta = e.weight / p_light;
         // A dispersive scene's path follows one wavelength from the first surface whose
         // index depends on it (see the path tracer).
-        let wavelength = scene
-            .disperses()
-            .then(|| crate::math::Wavelength::sample(sampler.next_1d()));
-        let mut dispersed = false;
+        let mut wavelength =
+            crate::math::wavelength::Followed::draw(scene.disperses(), || sampler.next_1d());
         let origin = e
             .normal
             .map_or(e.origin, |n| offset_ray_origin(e.origin, n));
@@ -156,11 +154,8 @@ impl LightTracer {
             scene.with_detail(&mut hit, &tex);
             let base = scene.base_color(&hit, &tex);
             let frame = Frame::from_axis(hit.shading_normal);
-            if let (Some(w), Some(_), false) = (wavelength, &m.dispersion, dispersed) {
-                beta *= w.weight;
-                dispersed = true;
-            }
-            let bsdf = m.bsdf_at(&scene.textures, &tex, base, wavelength.map(|w| w.nm));
+            beta *= wavelength.weigh(m.dispersion.is_some());
+            let bsdf = m.bsdf_at(&scene.textures, &tex, base, wavelength.nm());
             let wo_world = -ray.dir;
             let wo = frame.to_local(wo_world);
             if bsdf.has_non_delta() && depth < max_depth {

@@ -94,10 +94,8 @@ impl Path {
         // A scene with glass that disperses light draws a wavelength for every sample; its
         // weight joins the path's at the first surface whose index depends on it, and from
         // there the path follows that wavelength.
-        let wavelength = scene
-            .disperses()
-            .then(|| crate::math::Wavelength::sample(sampler.next_1d()));
-        let mut dispersed = false;
+        let mut wavelength =
+            crate::math::wavelength::Followed::draw(scene.disperses(), || sampler.next_1d());
         rays.camera += 1;
         loop {
             rays.deepest = rays.deepest.max(depth);
@@ -176,12 +174,9 @@ impl Path {
             scene.with_detail(&mut hit, &tex);
             let base = scene.base_color(&hit, &tex);
             let frame = Frame::from_axis(hit.shading_normal);
-            if let (Some(w), Some(_), false) = (wavelength, &m.dispersion, dispersed) {
-                beta *= w.weight;
-                dispersed = true;
-            }
+            beta *= wavelength.weigh(m.dispersion.is_some());
             let v = Vertex {
-                bsdf: m.bsdf_at(&scene.textures, &tex, base, wavelength.map(|w| w.nm)),
+                bsdf: m.bsdf_at(&scene.textures, &tex, base, wavelength.nm()),
                 wo: frame.to_local(-ray.dir),
                 frame,
                 ng: hit.normal,

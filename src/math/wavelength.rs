@@ -88,6 +88,42 @@ impl Wavelength {
     }
 }
 
+/// A sample's wavelength as one path follows it (the path tracer's, light tracing's): drawn
+/// where the scene disperses light, its weight taken once, at the first surface whose index
+/// depends on it.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Followed {
+    wavelength: Option<Wavelength>,
+    weighed: bool,
+}
+
+impl Followed {
+    /// A wavelength from `u()` where `disperses`, else none (and no number drawn).
+    pub fn draw(disperses: bool, u: impl FnOnce() -> f32) -> Self {
+        Followed {
+            wavelength: disperses.then(|| Wavelength::sample(u())),
+            weighed: false,
+        }
+    }
+
+    /// The wavelength, in nanometres, if the sample has one.
+    pub fn nm(&self) -> Option<f32> {
+        self.wavelength.map(|w| w.nm)
+    }
+
+    /// What the path's throughput is multiplied by at a surface, `dispersive` or not: the
+    /// wavelength's weight at the first dispersive one, 1 everywhere else.
+    pub fn weigh(&mut self, dispersive: bool) -> Color {
+        match self.wavelength {
+            Some(w) if dispersive && !self.weighed => {
+                self.weighed = true;
+                w.weight
+            }
+            _ => Color::ONE,
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -16,6 +16,16 @@ fn scene(text: &str) -> Scene {
         .unwrap_or_else(|e| panic!("{e}"))
 }
 
+/// A whole render on two threads.
+fn two_threads() -> RenderOptions<'static> {
+    RenderOptions {
+        threads: Some(2),
+        progress: &|_| {},
+        cancel: None,
+        region: None,
+    }
+}
+
 fn mean(img: &Image, x: std::ops::Range<u32>, y: std::ops::Range<u32>) -> Color {
     let mut sum = Color::ZERO;
     let mut n = 0;
@@ -111,12 +121,7 @@ fn furnace(ior: &str, integrator: &str, spp: u32) -> Color {
     let img = match integrator {
         "path" => render(&scene, &PathTracer, Some(2), &|_| {}).unwrap().image,
         _ => {
-            let options = RenderOptions {
-                threads: Some(2),
-                progress: &|_| {},
-                cancel: None,
-                region: None,
-            };
+            let options = two_threads();
             snell::render::bdpt::render_bdpt(&scene, &options)
                 .unwrap()
                 .image
@@ -184,12 +189,7 @@ fn white_light_through_a_parallel_slab_stays_white() {
         let img = match integrator {
             "path" => render(&scene, &PathTracer, Some(2), &|_| {}).unwrap().image,
             _ => {
-                let options = RenderOptions {
-                    threads: Some(2),
-                    progress: &|_| {},
-                    cancel: None,
-                    region: None,
-                };
+                let options = two_threads();
                 render_with(&scene, &Whitted, &options, None).unwrap().image
             }
         };
@@ -214,12 +214,7 @@ fn the_prism_scene_splits_white_light_in_order() {
     scene.settings.width = 240;
     scene.settings.height = 160;
     scene.settings.spp = 8;
-    let options = RenderOptions {
-        threads: Some(2),
-        progress: &|_| {},
-        cancel: None,
-        region: None,
-    };
+    let options = two_threads();
     let img = snell::render::light::render_light(&scene, &options)
         .unwrap()
         .image;
