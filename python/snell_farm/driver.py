@@ -188,14 +188,18 @@ def run(spec: JobSpec, stream: Optional[TextIO] = None) -> Costs:
                         frames_done += 1
                 progress.update(done, frames_done, force=not more and not pending)
         except BaseException:
-            # Cancelled in the task (it kills its snell), not by killing its worker: a forced
-            # cancel races with the reply of a task that has just finished, and Ray's core
-            # worker then fails a check and takes the whole process down.
-            for ref in pending:
-                try:
-                    ray.cancel(ref)
-                except Exception:
-                    pass
+            # A local instance's processes are killed with it (and each snell with its
+            # worker), so its tasks are left alone: any cancel races with the reply of a task
+            # that has just finished, and Ray's core worker then fails a check ("Tried to
+            # complete task that was not pending") and takes the whole process down. On a
+            # cluster the tasks must be stopped: cancelled in the task (it kills its snell),
+            # not by killing its worker, which makes that race likelier.
+            if spec.address:
+                for ref in pending:
+                    try:
+                        ray.cancel(ref)
+                    except Exception:
+                        pass
             raise
         finally:
             progress.finish()
