@@ -6,28 +6,29 @@
 //! Tiles are independent and every pixel's samples are seeded from `(seed, x, y)` (and a
 //! sample's index), so a resumed render gives the same bytes as one that was never stopped.
 //!
-//! The file is binary, little-endian: the line `snell checkpoint 3`, the fingerprint (u64),
+//! The file is binary, little-endian: the line `snell checkpoint 4`, the fingerprint (u64),
 //! width, height, samples per pixel (u32 each), seed (u64), the integrator (u32: 0 Whitted,
-//! 1 path), its sampler (u32: 0 independent, 1 Sobol) and clamp (u32 1 and an f32, or 0 and
-//! 0.0 for none), the scene's and the output's paths (u32 length, UTF-8), then what is done:
+//! 1 path, 2 light, 3 bdpt), its sampler (u32: 0 independent, 1 Sobol), clamp (u32 1 and an
+//! f32, or 0 and 0.0 for none) and adaptive sampling's noise threshold (the same way), the scene's and the output's paths (u32 length, UTF-8), then what is done:
 //! u32 0, the tile count (u32), then per tile its index and pixel count (u32 each) and its
 //! pixels (three f32 each); or u32 2 and the film, row by row, each pixel its sums (three
 //! f32), weight (f32), unsigned sums (three f32), sample count (u32) and sum of squared
 //! luminances (f32). Films saved without the squares (u32 1) are still read, their pixels'
 //! spread taken as none (so the error estimate of a render resumed from one counts only
 //! the samples after it as noisy). It is written to a
-//! temporary file and renamed into place, so a checkpoint is never half written. Version 2
-//! files (tiles only, without the u32 0) and version 1 files (without the integrator too)
-//! are still read.
+//! temporary file and renamed into place, so a checkpoint is never half written. Version 3
+//! files (without the noise threshold), version 2 files (tiles only, without the u32 0 too)
+//! and version 1 files (without the integrator too) are still read.
 
 use crate::film::{Film, FilmPixel};
 use crate::math::Color;
 use crate::sampler::SamplerKind;
-use crate::scene::{IntegratorKind, IntegratorSettings};
+use crate::scene::{IntegratorKind, RenderSettings};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
-const MAGIC: &[u8] = b"snell checkpoint 3\n";
+const MAGIC: &[u8] = b"snell checkpoint 4\n";
+const MAGIC_3: &[u8] = b"snell checkpoint 3\n";
 const MAGIC_2: &[u8] = b"snell checkpoint 2\n";
 const MAGIC_1: &[u8] = b"snell checkpoint 1\n";
 
@@ -66,21 +67,27 @@ pub struct CheckpointIntegrator {
     pub sampler: SamplerKind,
     /// The path tracer's clamp.
     pub clamp: Option<f32>,
+    /// Adaptive sampling's threshold (`[image] noise`, `--noise`).
+    pub noise: Option<f32>,
 }
 
 impl CheckpointIntegrator {
     /// What a render with settings `s` keeps.
-    pub fn of(s: &IntegratorSettings) -> Self {
+    pub fn of(s: &RenderSettings) -> Self {
+        let i = &s.integrator;
         CheckpointIntegrator {
-            kind: s.kind,
-            sampler: s.sampler,
-            clamp: s.clamp,
+            kind: i.kind,
+            sampler: i.sampler,
+            clamp: i.clamp,
+            noise: s.noise,
         }
     }
 
     /// Puts these settings into `s`.
-    pub fn apply(&self, s: &mut IntegratorSettings) {
-        (s.kind, s.sampler, s.clamp) = (self.kind, self.sampler, self.clamp);
+    pub fn apply(&self, s: &mut RenderSettings) {
+        let i = &mut s.integrator;
+        (i.kind, i.sampler, i.clamp) = (self.kind, self.sampler, self.clamp);
+        s.noise = self.noise;
     }
 }
 
@@ -120,6 +127,7 @@ impl Checkpoint {
             kind: IntegratorKind::Whitted,
             sampler: SamplerKind::Sobol,
             clamp: None,
+            noise: None,
         });
         u32s(
             &mut out,
@@ -136,6 +144,8 @@ impl Checkpoint {
                 },
                 i.clamp.is_some() as u32,
                 i.clamp.unwrap_or(0.0).to_bits(),
+                i.noise.is_some() as u32,
+                i.noise.unwrap_or(0.0).to_bits(),
             ],
         );
         for p in [&self.scene, &self.output] {
@@ -171,12 +181,14 @@ impl Checkpoint {
         let bytes =
             std::fs::read(path).map_err(|e| format!("cannot read {}: {e}", path.display()))?;
         let bad = |what: &str| format!("{} is not a snell checkpoint ({what})", path.display());
-        let (rest, version) = match [MAGIC, MAGIC_2, MAGIC_1].map(|m| bytes.strip_prefix(m)) {
-            [Some(rest), _, _] => (rest, 3),
-            [None, Some(rest), _] => (rest, 2),
-            [None, None, Some(rest)] => (rest, 1),
-            _ => return Err(bad("it does not start with `snell checkpoint 3`")),
-        };
+        let (rest, version) =
+            match [MAGIC, MAGIC_3, MAGIC_2, MAGIC_1].map(|m| bytes.strip_prefix(m)) {
+                [Some(rest), ..] => (rest, 4),
+                [None, Some(rest), ..] => (rest, 3),
+                [None, None, Some(rest), _] => (rest, 2),
+                [None, None, None, Some(rest)] => (rest, 1),
+                _ => return Err(bad("it does not start with `snell checkpoint 4`")),
+            };
         let mut r = Reader { bytes: rest, at: 0 };
         let truncated = || bad("it is cut short");
         let fingerprint = r.u64().ok_or_else(truncated)?;
@@ -207,11 +219,21 @@ impl Checkpoint {
                     (1, c) if c > 0.0 && c.is_finite() => Some(c),
                     _ => return Err(bad("its clamp is not a positive number")),
                 },
+                noise: if version >= 4 {
+                    let [given, noise] = [r.u32(), r.u32()].map(|v| v.ok_or_else(truncated));
+                    match (given?, f32::from_bits(noise?)) {
+                        (0, _) => None,
+                        (1, v) if RenderSettings::check_noise(v).is_ok() => Some(v),
+                        _ => return Err(bad("its noise threshold is not a number in (0, 1]")),
+                    }
+                } else {
+                    None
+                },
             })
         };
         let scene = PathBuf::from(r.string().ok_or_else(truncated)?);
         let output = PathBuf::from(r.string().ok_or_else(truncated)?);
-        let kind = if version == 3 {
+        let kind = if version >= 3 {
             r.u32().ok_or_else(truncated)?
         } else {
             0
@@ -336,6 +358,7 @@ mod tests {
                 kind: IntegratorKind::Path,
                 sampler: SamplerKind::Independent,
                 clamp: Some(10.0),
+                noise: Some(0.02),
             }),
             scene: PathBuf::from("/tmp/a scene.toml"),
             output: PathBuf::from("out.png"),
@@ -370,21 +393,35 @@ mod tests {
         std::fs::remove_file(&path).unwrap();
     }
 
-    /// Version 2 files (tiles only, no progress kind) are read.
+    /// Version 3 files (no noise threshold) and version 2 files (tiles only, no progress
+    /// kind either) are read.
     #[test]
-    fn version_2_files_are_read() {
+    fn version_2_and_3_files_are_read() {
         let c = sample();
         let path = std::env::temp_dir().join(format!("snell-ckpt2-{}", std::process::id()));
         c.save(&path).unwrap();
-        let v3 = std::fs::read(&path).unwrap();
+        let v4 = std::fs::read(&path).unwrap();
+        // Version 4 is version 3 with the noise threshold (u32 1, f32) after the clamp.
+        let noise = MAGIC.len() + 8 + 12 + 8 + 16;
+        assert_eq!(v4[noise..noise + 4], [1, 0, 0, 0]);
+        assert_eq!(v4[noise + 4..noise + 8], 0.02f32.to_le_bytes());
+        let mut v3 = MAGIC_3.to_vec();
+        v3.extend_from_slice(&v4[MAGIC.len()..noise]);
+        v3.extend_from_slice(&v4[noise + 8..]);
+        let mut without = c.clone();
+        if let Some(i) = &mut without.integrator {
+            i.noise = None;
+        }
+        std::fs::write(&path, &v3).unwrap();
+        assert_eq!(Checkpoint::load(&path).unwrap(), without);
         // Version 3 is version 2 with its progress kind (u32 0 for tiles) before the tiles.
         let at = v3.len() - 4 - c.tiles.values().map(|t| 8 + 12 * t.len()).sum::<usize>() - 4;
         assert_eq!(v3[at..at + 4], [0, 0, 0, 0]);
         let mut v2 = MAGIC_2.to_vec();
-        v2.extend_from_slice(&v3[MAGIC.len()..at]);
+        v2.extend_from_slice(&v3[MAGIC_3.len()..at]);
         v2.extend_from_slice(&v3[at + 4..]);
         std::fs::write(&path, &v2).unwrap();
-        assert_eq!(Checkpoint::load(&path).unwrap(), c);
+        assert_eq!(Checkpoint::load(&path).unwrap(), without);
         std::fs::remove_file(&path).unwrap();
     }
 

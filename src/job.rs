@@ -31,6 +31,8 @@ pub struct Overrides {
     pub exposure: Option<f32>,
     /// Tone curve of 8-bit outputs (`--tonemap`).
     pub tonemap: Option<crate::output::tone::ToneCurve>,
+    /// Adaptive sampling's threshold (`--noise`).
+    pub noise: Option<f32>,
 }
 
 impl Overrides {
@@ -46,6 +48,7 @@ impl Overrides {
         i.clamp = self.clamp.or(i.clamp);
         s.tone.exposure = self.exposure.unwrap_or(s.tone.exposure);
         s.tone.curve = self.tonemap.unwrap_or(s.tone.curve);
+        s.noise = self.noise.or(s.noise);
     }
 }
 
@@ -125,7 +128,23 @@ pub fn check_settings(s: &RenderSettings, limits: &Limits) -> Result<(), JobErro
         .map_err(|(e, help)| settings_error(e, help))?;
     limits
         .check_pixels(s.width, s.height)
-        .map_err(|(e, help)| settings_error(e, help))
+        .map_err(|(e, help)| settings_error(e, help))?;
+    if let Some(noise) = s.noise {
+        RenderSettings::check_noise(noise).map_err(|e| settings_error(e, None))?;
+        use crate::scene::IntegratorKind::*;
+        let why = match s.integrator.kind {
+            Path => return Ok(()),
+            Whitted => "Whitted's samples are fixed strata, all taken at once",
+            Light | Bdpt => {
+                "light and bdpt splat their light anywhere on the film, not into one pixel"
+            }
+        };
+        return Err(settings_error(
+            format!("adaptive sampling (noise) is the path tracer's: {why}"),
+            Some("render with --integrator path (or [integrator] type = \"path\"), or without --noise and [image] noise".into()),
+        ));
+    }
+    Ok(())
 }
 
 impl RenderJob {
@@ -179,7 +198,7 @@ impl RenderJob {
         if let Some(c) = resumed {
             (s.width, s.height, s.spp, s.seed) = (c.width, c.height, c.spp, c.seed);
             if let Some(i) = c.integrator {
-                i.apply(&mut s.integrator);
+                i.apply(s);
             }
         }
         overrides.apply(s);
@@ -202,11 +221,17 @@ impl RenderJob {
             i.sampler as u64,
             i.clamp.map_or(0, |c| c.to_bits() as u64 + 1),
         ]);
-        let seed_and_integrator = if *i == crate::scene::IntegratorSettings::default() {
-            s.seed
-        } else {
-            settings_hash
+        // Adaptive sampling too (a render without it keeps the fingerprint it had).
+        let settings_hash = match s.noise {
+            Some(v) => crate::math::hash_seed(&[settings_hash, v.to_bits() as u64]),
+            None => settings_hash,
         };
+        let seed_and_integrator =
+            if *i == crate::scene::IntegratorSettings::default() && s.noise.is_none() {
+                s.seed
+            } else {
+                settings_hash
+            };
         // The frame too, in an animation (a still's fingerprint stays as it was).
         let seed_and_integrator = match scene.animation {
             Some(_) => crate::math::hash_seed(&[seed_and_integrator, frame as u64]),
@@ -326,7 +351,7 @@ mod tests {
             height: s.height,
             spp: s.spp,
             seed: s.seed,
-            integrator: Some(crate::checkpoint::CheckpointIntegrator::of(&s.integrator)),
+            integrator: Some(crate::checkpoint::CheckpointIntegrator::of(s)),
             scene: path.clone(),
             output: "s.png".into(),
             tiles: Default::default(),
@@ -349,7 +374,7 @@ mod tests {
         let c = Checkpoint {
             fingerprint: job.fingerprint,
             integrator: Some(crate::checkpoint::CheckpointIntegrator::of(
-                &job.scene.settings.integrator,
+                &job.scene.settings,
             )),
             ..c
         };

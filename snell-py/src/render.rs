@@ -108,10 +108,13 @@ pub fn render<'py>(
         return Err(errors::settings(format!("{e} (help: {})", e.help())));
     }
     let s = &job.scene.settings;
-    if views.contains(&Aov::Variance) && s.integrator.kind != IntegratorKind::Path {
-        return Err(errors::value(
-            "the variance view is the path tracer's: Whitted's samples are fixed strata",
-        ));
+    if let Some(a) = views.iter().find(|a| a.from_film())
+        && s.integrator.kind != IntegratorKind::Path
+    {
+        return Err(errors::value(format!(
+            "the {} view is the path tracer's: Whitted's samples are fixed strata",
+            a.name()
+        )));
     }
     let time = match time {
         Some(t) if !(t.is_finite() && t > 0.0) => {
@@ -163,7 +166,7 @@ pub fn render<'py>(
         let buffers = py.detach(|| {
             let mut b = render_aovs(scene, threads);
             if let (Ok(b), Some(film)) = (&mut b, &finished.film) {
-                b.set_variance(film);
+                b.read_film(film);
             }
             b
         });

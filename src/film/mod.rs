@@ -92,6 +92,19 @@ impl FilmPixel {
     }
 }
 
+/// Luminance below which a pixel's error counts as if it were this bright (1 % of white):
+/// the error of a nearly black pixel relative to its value would never get small, and
+/// cannot be seen once it is far below a step of an 8-bit output.
+pub const DARK: f32 = 0.01;
+
+/// A pixel's relative error: the standard error of its estimate (`variance` of its
+/// luminance's estimate) over its `luminance` plus [`DARK`]. What adaptive sampling's
+/// `noise` threshold and the variance view's colours measure.
+#[inline]
+pub fn relative_error(variance: f32, luminance: f32) -> f32 {
+    variance.max(0.0).sqrt() / (luminance.max(0.0) + DARK)
+}
+
 /// One value per pixel of an image, kept tile by tile (see [`TileGrid`]) so that the render
 /// loop can hand each thread a tile as one slice. `P` is what a pixel holds: the sums of its
 /// samples ([`FilmPixel`], the default), or a debug view's record of what its ray met.

@@ -2,7 +2,8 @@
 //! first — its normal, uv, distance, surface colour, object and material — and how deep the
 //! integrator's rays behind it go (Whitted's tree, or the path tracer's path of sample 0),
 //! one ray per pixel, no anti-aliasing, so ids stay exact; and how uncertain the path
-//! tracer's pixels are (`variance`, from the render's own samples).
+//! tracer's pixels are (`variance`, from the render's own samples) and how many samples
+//! each took (`spp`, which adaptive sampling varies).
 //!
 //! [`AovBuffers::channels`] gives the raw values (for a multi-layer EXR);
 //! [`AovBuffers::display`] maps them to colours that read well (for PNG), documented in
@@ -35,11 +36,13 @@ pub enum Aov {
     /// How uncertain the path tracer's pixel is: the variance of its estimate, from the
     /// spread of its samples (the render's own, not a centre ray's).
     Variance,
+    /// How many samples the path tracer's pixel took (adaptive sampling's map).
+    Spp,
 }
 
 impl Aov {
     /// Every view, in the order they are documented.
-    pub const ALL: [Aov; 8] = [
+    pub const ALL: [Aov; 9] = [
         Aov::Normal,
         Aov::Uv,
         Aov::Depth,
@@ -48,6 +51,7 @@ impl Aov {
         Aov::Material,
         Aov::Bounces,
         Aov::Variance,
+        Aov::Spp,
     ];
 
     /// The name used on the command line, in file names and as the EXR layer name.
@@ -61,7 +65,14 @@ impl Aov {
             Aov::Material => "material",
             Aov::Bounces => "bounces",
             Aov::Variance => "variance",
+            Aov::Spp => "spp",
         }
+    }
+
+    /// Whether the view is read from the path tracer's film of sums (its samples' spread
+    /// and count) rather than traced through each pixel's centre.
+    pub fn from_film(self) -> bool {
+        matches!(self, Aov::Variance | Aov::Spp)
     }
 
     /// The view with this name.
@@ -93,10 +104,12 @@ pub struct AovBuffers {
     pub bounces: Vec<u32>,
     /// The variance of each pixel's luminance as the render estimated it, NaN where it is
     /// unknown (fewer than two samples, or a render that kept no sums): empty until
-    /// [`AovBuffers::set_variance`].
+    /// [`AovBuffers::read_film`].
     pub variance: Vec<f32>,
     /// Each pixel's luminance in the render, beside its variance.
     pub luminance: Vec<f32>,
+    /// The samples each pixel took (0 where the render kept no sums).
+    pub samples: Vec<u32>,
 }
 
 /// What one pixel's centre ray finds.
@@ -126,6 +139,7 @@ impl AovBuffers {
             bounces: all.iter().map(|s| s.bounces).collect(),
             variance: vec![f32::NAN; all.len()],
             luminance: vec![0.0; all.len()],
+            samples: vec![0; all.len()],
         }
     }
 }
@@ -211,11 +225,12 @@ fn ramp(t: f32) -> Color {
 }
 
 impl AovBuffers {
-    /// Takes each pixel's variance and luminance from the film of the path tracer's sums
-    /// the picture was made from.
-    pub fn set_variance(&mut self, film: &Film) {
+    /// Takes each pixel's variance, luminance and sample count from the film of the path
+    /// tracer's sums the picture was made from.
+    pub fn read_film(&mut self, film: &Film) {
         self.variance = film.rows(|p| p.variance_of_mean().unwrap_or(f32::NAN));
         self.luminance = film.rows(|p| crate::math::luminance(p.value()));
+        self.samples = film.rows(|p| p.samples);
     }
 
     /// The raw values of `aov` as named channels, for an EXR layer: normal `X Y Z`, uv
@@ -240,6 +255,7 @@ impl AovBuffers {
             Aov::Material => vec![("id", per(&|i| self.material[i] as f32))],
             Aov::Bounces => vec![("count", per(&|i| self.bounces[i] as f32))],
             Aov::Variance => vec![("Y", self.variance.clone())],
+            Aov::Spp => vec![("count", per(&|i| self.samples[i] as f32))],
         }
     }
 
@@ -255,7 +271,9 @@ impl AovBuffers {
     /// - bounces: a ramp from dark blue (0) to yellow (`max_depth - 1`);
     /// - variance: the pixel's relative standard error, `sqrt(variance) / (luminance +
     ///   0.01)`, on the same ramp by its logarithm: dark blue at 0.1 % or less, yellow at
-    ///   100 % or more (a decade every third of the ramp); black where it is unknown.
+    ///   100 % or more (a decade every third of the ramp); black where it is unknown;
+    /// - spp: the samples a pixel took on the same ramp by their base-2 logarithm, dark blue
+    ///   at 1 and yellow at the most any pixel took; black where it took none.
     pub fn display(&self, aov: Aov, max_depth: u32) -> Image {
         let mut img = Image::new(self.width, self.height);
         let (near, far) = self
@@ -265,6 +283,7 @@ impl AovBuffers {
             .fold((f32::INFINITY, 0.0f32), |(lo, hi), &d| {
                 (lo.min(d), hi.max(d))
             });
+        let most = self.samples.iter().copied().max().unwrap_or(0);
         for (i, px) in img.pixels.iter_mut().enumerate() {
             let hit = self.object[i] >= 0;
             // Display values, to be stored as they are.
@@ -301,10 +320,14 @@ impl AovBuffers {
                     if v.is_nan() {
                         Color::ZERO
                     } else {
-                        let rel = v.max(0.0).sqrt() / (self.luminance[i].max(0.0) + 0.01);
+                        let rel = crate::film::relative_error(v, self.luminance[i]);
                         ramp((rel.max(1e-3).log10() + 3.0) / 3.0)
                     }
                 }
+                Aov::Spp => match self.samples[i] {
+                    0 => Color::ZERO,
+                    n => ramp((n as f32).log2() / (most as f32).log2().max(1.0)),
+                },
                 _ => Color::ZERO,
             };
             let v = value.clamp(Color::ZERO, Color::ONE);

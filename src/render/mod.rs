@@ -11,6 +11,7 @@ use std::collections::BTreeMap;
 use std::sync::Mutex;
 use std::sync::atomic::AtomicBool;
 
+pub mod adaptive;
 mod aov;
 pub mod bdpt;
 pub mod estimate;
@@ -26,7 +27,7 @@ pub mod to_files;
 pub use crate::film::Region;
 pub use crate::film::TILE;
 pub use aov::render_aovs;
-pub use pass::{PassError, PassStats, render_pass, render_pass_to};
+pub use pass::{PassError, PassStats, render_pass, render_pass_adaptive, render_pass_to};
 pub use pixel::{PixelJob, camera_ray, for_each_sample, start_sample, whitted_lens_sample};
 pub(crate) use tiles::for_each_tile;
 

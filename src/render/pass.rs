@@ -3,6 +3,7 @@
 //! on later. Passes of samples `0..a`, `a..b`, ... give the bytes one render of `0..b`
 //! gives, at any thread count.
 
+use super::adaptive::Convergence;
 use super::tiles::for_each_tile;
 use super::{BadSamples, PixelJob, RenderError, RenderOptions, TilesDone};
 use crate::film::{Film, FilmPixel};
@@ -51,7 +52,14 @@ pub fn render_pass(
     if !integrator.uses_sampler() && samples != (0..scene.settings.spp) {
         return Err(PassError::NotProgressive(scene.settings.spp));
     }
-    pass(scene, integrator, film, |_| samples.clone(), options)
+    pass(
+        scene,
+        integrator,
+        film,
+        |_, _, _| samples.clone(),
+        |_| false,
+        options,
+    )
 }
 
 /// Brings every pixel of `film` up to `target` samples: each takes the samples from the
@@ -72,7 +80,37 @@ pub fn render_pass_to(
         scene,
         integrator,
         film,
-        |p| p.samples..target.max(p.samples),
+        |_, _, p| p.samples..target.max(p.samples),
+        |_| false,
+        options,
+    )
+}
+
+/// [`render_pass_to`] for the pixels `going_on` names alone (an adaptive render's pass):
+/// the others, and the tiles where none is, are left as they are.
+pub fn render_pass_adaptive(
+    scene: &Scene,
+    integrator: &dyn Integrator,
+    film: &mut Film,
+    target: u32,
+    going_on: &Convergence,
+    options: &RenderOptions,
+) -> Result<PassStats, PassError> {
+    if !integrator.uses_sampler() {
+        return Err(PassError::NotProgressive(scene.settings.spp));
+    }
+    pass(
+        scene,
+        integrator,
+        film,
+        |x, y, p| {
+            if going_on.is_active(x, y) {
+                p.samples..target.max(p.samples)
+            } else {
+                p.samples..p.samples
+            }
+        },
+        |t| !going_on.tile_active(t),
         options,
     )
 }
@@ -82,7 +120,8 @@ fn pass(
     scene: &Scene,
     integrator: &dyn Integrator,
     film: &mut Film,
-    range: impl Fn(&FilmPixel) -> Range<u32> + Sync,
+    range: impl Fn(u32, u32, &FilmPixel) -> Range<u32> + Sync,
+    skip: impl Fn(u32) -> bool + Sync,
     options: &RenderOptions,
 ) -> Result<PassStats, PassError> {
     let s = &scene.settings;
@@ -104,9 +143,9 @@ fn pass(
     let tiles = for_each_tile(
         film,
         options,
-        |_| false,
+        skip,
         |x, y, pixel, (rays, bad): &mut (RayStats, BadSamples)| {
-            let samples = range(pixel);
+            let samples = range(x, y, pixel);
             job.add_pixel(x, y, samples, pixel, rays, bad);
         },
         |_, _| {},

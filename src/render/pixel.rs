@@ -358,6 +358,7 @@ mod tests {
                     integrator: Default::default(),
                     tone: Default::default(),
                     filter_textures: true,
+                    noise: None,
                 };
                 for (x, y) in [(0, 0), (17, 5), (63, 40)] {
                     let mut got = vec![];

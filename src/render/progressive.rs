@@ -4,9 +4,11 @@
 //! cancelled part way leaves its finished tiles with more samples than the rest; the film
 //! is still a picture (each pixel the average of its own samples), and the next pass brings
 //! them level, so stopping and going on (a checkpoint between passes) gives the bytes of a
-//! render never stopped.
+//! render never stopped. An adaptive render's pass (`Until::noise`) cancelled part way is
+//! left out instead, for the same reason (see `render_progressive`).
 
-use super::pass::{PassError, render_pass_to};
+use super::adaptive::Convergence;
+use super::pass::{PassError, render_pass_adaptive, render_pass_to};
 use super::{BadSamples, RenderOptions};
 use crate::film::Film;
 use crate::integrator::{Integrator, RayStats};
@@ -22,6 +24,10 @@ pub struct Until {
     /// After the pass that spends this much time (from the render's start), if given; the
     /// first pass (one sample of every pixel) is always taken.
     pub time: Option<Duration>,
+    /// Adaptive sampling: once every pixel has
+    /// [`FIRST_DECISION`](super::adaptive::FIRST_DECISION) samples, only those whose relative
+    /// error (or a neighbour's) is above this take more (`spp` the most any takes).
+    pub noise: Option<f32>,
 }
 
 /// Why it stopped.
@@ -40,15 +46,21 @@ pub enum Ended {
 pub enum PassEvent {
     /// A pass starts, taking every pixel to `to` samples.
     Start {
-        /// The fewest samples any pixel has.
+        /// The fewest samples any pixel that takes some has.
         from: u32,
         /// The pass's end.
         to: u32,
+        /// The pixels that take samples: all of them (or of the region), but in an adaptive
+        /// render, where the others have converged (or reached the samples' cap).
+        pixels: u64,
     },
     /// A pass is over.
     Done {
         /// The fewest samples any pixel has (below the pass's end if it was cancelled).
         samples: u32,
+        /// In an adaptive render, the pixels that have converged (or reached the samples'
+        /// cap) and take no more.
+        converged: Option<u64>,
         /// Since the render started.
         elapsed: Duration,
     },
@@ -85,6 +97,14 @@ impl SampleCount {
     pub fn pass(&self, pixels: u64, from: u32, to: u32) {
         self.base.store(pixels * from as u64, Ordering::Relaxed);
         self.step.store((to - from) as u64, Ordering::Relaxed);
+    }
+
+    /// A pass of an adaptive render starts, the film holding `taken` samples in all, its
+    /// pixels that go on taking `step` more each (the bar then counts a finished tile's
+    /// pixels that have converged as taking them too: an estimate).
+    pub fn adaptive_pass(&self, taken: u64, step: u32) {
+        self.base.store(taken, Ordering::Relaxed);
+        self.step.store(step as u64, Ordering::Relaxed);
     }
 
     /// The samples taken once `n` pixels of the pass under way are finished.
@@ -137,10 +157,21 @@ pub fn render_progressive(
 ) -> Result<Progressive, PassError> {
     let start = Instant::now();
     let mut out = Progressive::default();
-    let mut per_sample = None;
+    // Seconds a sample of one pixel takes, from the last pass that finished.
+    let mut per_pixel_sample: Option<f64> = None;
     let cancelled = || options.cancel.is_some_and(|c| c.load(Ordering::SeqCst));
+    let all_pixels = film.grid().pixels_in(options.region);
+    let converge = |film: &Film| {
+        until
+            .noise
+            .map(|n| Convergence::of(film, n, until.spp, options.region))
+    };
+    let mut going_on = converge(film);
     loop {
-        let done = film_samples_in(film, options.region);
+        let (done, pixels) = match &going_on {
+            Some(c) => (c.fewest_samples().unwrap_or(until.spp), c.active()),
+            None => (film_samples_in(film, options.region), all_pixels),
+        };
         let elapsed = start.elapsed();
         out.ended = if done >= until.spp {
             Some(Ended::Complete)
@@ -155,28 +186,50 @@ pub fn render_progressive(
             return Ok(out);
         }
         let time_left = until.time.map(|t| t.saturating_sub(elapsed));
+        let per_sample = per_pixel_sample.map(|t| Duration::from_secs_f64(t * pixels as f64));
         let end = next_pass_end(done, until.spp, per_sample, time_left);
         event(
             PassEvent::Start {
                 from: done,
                 to: end,
+                pixels,
             },
             film,
         );
         let before: u64 = film.pixels().iter().map(|p| p.samples as u64).sum();
         let t0 = Instant::now();
-        let stats = render_pass_to(scene, integrator, film, end, options)?;
+        let (stats, tiles) = match &going_on {
+            Some(c) => {
+                let grid = film.grid();
+                let tiles = (0..grid.count()).filter(|&t| c.tile_active(t)).count() as u32;
+                // A pass cancelled part way is left out: the next decisions read the film
+                // as this one did, so a resumed render goes on as one never stopped would
+                // (finished tiles' new samples would change their neighbours' windows).
+                let start = film.clone();
+                let stats = render_pass_adaptive(scene, integrator, film, end, c, options)?;
+                if stats.tiles_done < tiles {
+                    *film = start;
+                }
+                (stats, tiles)
+            }
+            None => {
+                let stats = render_pass_to(scene, integrator, film, end, options)?;
+                (stats, film.grid().tiles_in(options.region))
+            }
+        };
         let after: u64 = film.pixels().iter().map(|p| p.samples as u64).sum();
         out.passes += 1;
         out.samples_added += after - before;
         out.rays += stats.rays;
         out.bad_samples.add(stats.bad_samples);
-        if stats.tiles_done == film.grid().tiles_in(options.region) {
-            per_sample = Some(t0.elapsed() / (end - done));
+        if stats.tiles_done == tiles && after > before {
+            per_pixel_sample = Some(t0.elapsed().as_secs_f64() / (after - before) as f64);
         }
+        going_on = converge(film);
         event(
             PassEvent::Done {
                 samples: film_samples_in(film, options.region),
+                converged: going_on.as_ref().map(|c| all_pixels - c.active()),
                 elapsed: start.elapsed(),
             },
             film,
@@ -248,6 +301,7 @@ mod tests {
         let until = Until {
             spp: 13,
             time: None,
+            noise: None,
         };
         let mut film = Film::new(24, 20);
         let mut events = vec![];
@@ -260,7 +314,7 @@ mod tests {
         let starts: Vec<_> = events
             .iter()
             .filter_map(|e| match e {
-                PassEvent::Start { from, to } => Some((*from, *to)),
+                PassEvent::Start { from, to, .. } => Some((*from, *to)),
                 _ => None,
             })
             .collect();
@@ -305,6 +359,7 @@ mod tests {
         let until = Until {
             spp: 13,
             time: Some(Duration::ZERO),
+            noise: None,
         };
         let mut film = Film::new(24, 20);
         let p =

@@ -105,6 +105,11 @@ pub enum RunError {
     /// A scene bidirectional path tracing cannot render.
     #[error(transparent)]
     Bdpt(#[from] super::bdpt::BdptError),
+    /// What adaptive sampling cannot be combined with (yet).
+    #[error(
+        "adaptive sampling (noise) cannot be combined with {0} (help: render without --noise and [image] noise)"
+    )]
+    Adaptive(&'static str),
     /// Light path expressions this render cannot give.
     #[error("{error} (help: {help})", help = .0.help(), error = .0)]
     Lpe(#[from] RenderLpeError),
@@ -131,6 +136,11 @@ pub fn run(scene: &Scene, options: &RunOptions) -> Result<Finished, RunError> {
         region: None,
     };
     if let Some(set) = lpe::for_render(scene, options.lpe, &[])? {
+        if s.noise.is_some() {
+            return Err(RunError::Adaptive(
+                "light path expressions: their render takes every sample of a pixel at once",
+            ));
+        }
         let r = render_lpe(scene, &set, &whole).map_err(|e| match e {
             LpeRenderError::Render(e) => RunError::Render(e),
             LpeRenderError::NotPathTracer => RunError::Lpe(RenderLpeError::Whitted),
@@ -157,7 +167,10 @@ pub fn run(scene: &Scene, options: &RunOptions) -> Result<Finished, RunError> {
     let count = SampleCount::default();
     let progress = |n: u64| {
         let done = count.after(n);
-        (options.progress)(JobProgress { done, total })
+        (options.progress)(JobProgress {
+            done: done.min(total),
+            total,
+        })
     };
     let render = RenderOptions {
         threads: options.threads,
@@ -169,6 +182,7 @@ pub fn run(scene: &Scene, options: &RunOptions) -> Result<Finished, RunError> {
     let until = Until {
         spp: s.spp,
         time: options.time,
+        noise: s.noise,
     };
     let done = render_progressive(
         scene,
@@ -176,9 +190,14 @@ pub fn run(scene: &Scene, options: &RunOptions) -> Result<Finished, RunError> {
         &mut film,
         until,
         &render,
-        &mut |event, _| {
-            if let PassEvent::Start { from, to } = event {
-                count.pass(pixels, from, to);
+        &mut |event, film| {
+            if let PassEvent::Start { from, to, .. } = event {
+                if s.noise.is_some() {
+                    let taken = film.pixels().iter().map(|p| p.samples as u64).sum();
+                    count.adaptive_pass(taken, to - from);
+                } else {
+                    count.pass(pixels, from, to);
+                }
             }
         },
     )?;
@@ -312,7 +331,7 @@ impl Outputs {
         } else {
             let mut buffers = render_aovs(scene, threads)?;
             if let Some(film) = film {
-                buffers.set_variance(film);
+                buffers.read_film(film);
             }
             Some(buffers)
         };
@@ -369,10 +388,13 @@ pub fn render_to_files(
 ) -> Result<Finished, RunError> {
     let scene = &job.scene;
     let sampled = scene.settings.integrator.kind == crate::scene::IntegratorKind::Path;
-    if views.contains(&Aov::Variance) && !sampled {
-        return Err(RunError::View(
-            "the variance view is the path tracer's: Whitted's samples are fixed strata".into(),
-        ));
+    if let Some(a) = views.iter().find(|a| a.from_film())
+        && !sampled
+    {
+        return Err(RunError::View(format!(
+            "the {} view is the path tracer's: Whitted's samples are fixed strata",
+            a.name()
+        )));
     }
     let taken: Vec<&str> = views.iter().map(|a| a.name()).collect();
     let names: Vec<String> = lpe::for_render(scene, options.lpe, &taken)?

@@ -28,6 +28,9 @@ pub struct RenderSettings {
     /// Whether camera rays carry differentials, so textures are filtered over each
     /// pixel's footprint.
     pub filter_textures: bool,
+    /// Adaptive sampling's threshold: pixels stop taking samples once their relative error
+    /// is below it (`spp` then the most they take); `None` samples every pixel alike.
+    pub noise: Option<f32>,
 }
 
 /// Which integrator renders, and the path tracer's settings (`[integrator]`).
@@ -60,6 +63,17 @@ impl Default for IntegratorSettings {
 impl RenderSettings {
     /// Largest image side accepted (pixel coordinates must stay exact in an `f32`).
     pub const MAX_SIDE: u32 = 65_536;
+
+    /// Checks an adaptive sampling threshold: a relative error, above 0 and at most 1.
+    pub fn check_noise(v: f32) -> Result<(), String> {
+        if v.is_finite() && v > 0.0 && v <= 1.0 {
+            Ok(())
+        } else {
+            Err(format!(
+                "the noise threshold is a relative error above 0 and at most 1 (0.01 is 1 %), not {v}"
+            ))
+        }
+    }
 
     /// Checks an image side.
     pub fn check_side(what: &str, v: u32) -> Result<(), String> {

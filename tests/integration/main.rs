@@ -1,6 +1,7 @@
 //! Integration tests, built as one test binary: the command line, whole renders (golden
 //! images, determinism), optics through a built scene, and the scene's JSON Schema.
 
+mod adaptive;
 mod animation;
 mod aov;
 mod bad;

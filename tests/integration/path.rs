@@ -415,7 +415,11 @@ fn the_estimated_error_is_the_pictures_error() {
             (s.width, s.height, s.spp, s.seed) = (32, 32, spp, seed);
             s.integrator.sampler = SamplerKind::Independent;
             let mut film = Film::new(32, 32);
-            let until = Until { spp, time: None };
+            let until = Until {
+                spp,
+                time: None,
+                noise: None,
+            };
             render_progressive(
                 &scene,
                 &PathTracer,

@@ -124,6 +124,23 @@ fn parse_clamp(s: &str) -> Result<f32, String> {
     }
 }
 
+/// A noise threshold: a relative error above 0 and at most 1, or a percentage (`1%`).
+fn parse_noise(s: &str) -> Result<f32, String> {
+    let t = s.trim();
+    let (number, scale) = match t.strip_suffix('%') {
+        Some(n) => (n.trim(), 0.01),
+        None => (t, 1.0),
+    };
+    let bad = || {
+        format!(
+            "`{s}` is not a noise threshold: give a relative error above 0 and at most 1, as 0.01 or 1%"
+        )
+    };
+    let v = number.parse::<f32>().map_err(|_| bad())? * scale;
+    snell::scene::RenderSettings::check_noise(v).map_err(|_| bad())?;
+    Ok(v)
+}
+
 /// A time: a number with `ms`, `s`, `m` or `h` after it, or seconds without.
 pub(crate) fn parse_duration(s: &str) -> Result<std::time::Duration, String> {
     let t = s.trim();
@@ -176,6 +193,11 @@ pub(crate) struct RenderArgs {
     /// (seconds). With --spp 65536 the time alone decides.
     #[arg(long, allow_hyphen_values = true, value_parser = parse_duration, value_name = "TIME")]
     pub(crate) time: Option<std::time::Duration>,
+    /// Adaptive sampling (path tracer): after 16 samples a pixel, a pixel takes more only
+    /// while its estimated relative error, or a neighbour's, is above this (0.01 or 1 %),
+    /// --spp (or the scene's samples) the most it takes (overrides `[image] noise`).
+    #[arg(long, allow_negative_numbers = true, value_parser = parse_noise, value_name = "ERROR")]
+    pub(crate) noise: Option<f32>,
     /// Render only the pixels of columns X0..X1 and rows Y0..Y1 (ends exclusive, (0, 0) the
     /// top left): the same pixels, bit for bit, as that part of the whole render. A PNG holds
     /// the region alone; an EXR holds it at its place in the whole image (its data window).

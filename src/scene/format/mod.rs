@@ -134,6 +134,9 @@ pub struct ImageDef {
     /// Light path expressions rendered beside the picture (path tracer): each an image of
     /// the light that came by the paths it matches (docs/lpe.md).
     pub lpe: Vec<LpeDef>,
+    /// Adaptive sampling (path tracer): pixels stop taking samples once their estimated
+    /// relative error is below this (0.01 is 1 %), `samples` the most they take.
+    pub noise: Option<f32>,
 }
 
 /// `[[image.lpe]]`: an image of the light that came by the paths an expression matches,
@@ -165,6 +168,7 @@ impl Default for ImageDef {
             tonemap: crate::output::tone::ToneCurve::Clamp,
             filter_textures: true,
             lpe: vec![],
+            noise: None,
         }
     }
 }

@@ -62,6 +62,13 @@ impl Builder<'_> {
                 curve: d.tonemap,
             },
             filter_textures: d.filter_textures,
+            noise: d.noise.filter(|&v| match RenderSettings::check_noise(v) {
+                Ok(()) => true,
+                Err(e) => {
+                    self.error(path.key("noise"), e);
+                    false
+                }
+            }),
         }
     }
 

@@ -18,6 +18,7 @@ seed = 7
 exposure = -0.5
 tonemap = "aces"
 filter_textures = true
+noise = 0.02
 lpe = [{ name = "walls", expr = "C<RD>L", preset = "direct" }]
 [integrator]
 type = "path"

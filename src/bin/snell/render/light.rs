@@ -76,5 +76,6 @@ pub(super) fn render_splatted(
         error: None,
         film: None,
         layers,
+        adaptive: None,
     })
 }

@@ -39,6 +39,10 @@ pub(super) fn prepare(
         (args.checkpoint.is_some(), "--checkpoint"),
         (args.resume.is_some(), "--resume"),
         (args.time.is_some(), "--time"),
+        (
+            scene.settings.noise.is_some(),
+            "adaptive sampling (--noise, [image] noise)",
+        ),
     ];
     if let Some((_, flag)) = other.iter().find(|(given, _)| *given) {
         return Err(usage_error(
@@ -76,5 +80,6 @@ pub(super) fn render_with_lpe(run: &Run, set: &LpeSet) -> Result<Outcome, String
         error: None,
         film: None,
         layers: r.layers,
+        adaptive: None,
     })
 }

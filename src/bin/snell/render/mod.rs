@@ -88,6 +88,7 @@ fn overrides(args: &RenderArgs) -> snell::job::Overrides {
     snell::job::Overrides {
         exposure: args.exposure,
         tonemap: args.tonemap,
+        noise: args.noise,
         ..args.image.overrides(args.seed)
     }
 }
@@ -130,6 +131,11 @@ fn render_job(
             (args.resume.is_some(), "--resume"),
             (!args.aov.is_empty(), "--aov"),
             (args.time.is_some(), "--time"),
+            // A pixel at the region's edge would read its neighbours outside.
+            (
+                scene.settings.noise.is_some(),
+                "adaptive sampling (--noise, [image] noise)",
+            ),
         ];
         if let Some((_, flag)) = other.iter().find(|(given, _)| *given) {
             return usage_error(
@@ -142,18 +148,23 @@ fn render_job(
     let random = kind == snell::scene::IntegratorKind::Path;
     let mut aovs: Vec<Aov> = vec![];
     for list in &args.aov {
-        // `all` is every view the integrator has: Whitted has no variance.
+        // `all` is every view the integrator has: Whitted has no variance or spp.
         let all = list.views() == Aov::ALL;
         for a in list.views() {
-            let unavailable = all && *a == Aov::Variance && !random;
+            let unavailable = all && a.from_film() && !random;
             if !aovs.contains(a) && !unavailable {
                 aovs.push(*a);
             }
         }
     }
-    if aovs.contains(&Aov::Variance) && !random {
+    if let Some(a) = aovs.iter().find(|a| a.from_film())
+        && !random
+    {
         return usage_error(
-            "the variance view is the path tracer's: Whitted's samples are fixed strata, not random ones whose spread estimates an error",
+            &format!(
+                "the {} view is the path tracer's: Whitted's samples are fixed strata, not random ones whose spread estimates an error",
+                a.name()
+            ),
             Some("render with --integrator path (or [integrator] type = \"path\")"),
         );
     }
@@ -235,7 +246,7 @@ fn render_job(
         checkpoint: checkpoint_path.as_deref(),
         every: std::time::Duration::from_secs_f64(args.checkpoint_every),
         saver: &saver,
-        keep_film: aovs.contains(&Aov::Variance),
+        keep_film: aovs.iter().any(|a| a.from_film()),
         region: args.region,
     };
     // The path tracer renders in passes, unless it resumes a checkpoint of tiles (an
@@ -377,6 +388,29 @@ pub(crate) struct Outcome {
     pub(crate) film: Option<snell::film::Film>,
     /// The light path expressions' images, in order (none without expressions).
     pub(crate) layers: Vec<snell::film::Image>,
+    /// Where adaptive sampling took the samples (`--noise`).
+    pub(crate) adaptive: Option<Adaptive>,
+}
+
+/// Where an adaptive render took its samples.
+pub(crate) struct Adaptive {
+    /// The threshold.
+    pub(crate) noise: f32,
+    /// The fewest and the most samples a pixel took.
+    pub(crate) fewest: u32,
+    pub(crate) most: u32,
+    /// The samples of all the pixels.
+    pub(crate) total: u64,
+    /// The pixels whose estimated relative error is below `noise`, of `pixels`.
+    pub(crate) converged: u64,
+    pub(crate) pixels: u64,
+}
+
+impl Adaptive {
+    /// The share of pixels below the threshold, in per cent.
+    pub(crate) fn share(&self) -> f64 {
+        100.0 * self.converged as f64 / self.pixels.max(1) as f64
+    }
 }
 
 /// What a render is, for its checkpoints.
@@ -401,7 +435,7 @@ impl Saver<'_> {
             height: s.height,
             spp: s.spp,
             seed: s.seed,
-            integrator: Some(CheckpointIntegrator::of(&s.integrator)),
+            integrator: Some(CheckpointIntegrator::of(s)),
             scene: std::fs::canonicalize(self.scene_path)
                 .unwrap_or_else(|_| self.scene_path.to_path_buf()),
             output: std::path::absolute(self.out_path)

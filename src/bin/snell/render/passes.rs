@@ -1,8 +1,9 @@
 //! The path tracer's render in passes over a film of sums (1, 2, 4 ... samples per pixel),
-//! with `--time`, a progress bar in samples with the error estimated after each pass,
-//! checkpoints between passes, and Ctrl-C writing the picture of the samples taken so far.
+//! with `--time`, a progress bar in samples with the error estimated after each pass (in
+//! an adaptive render, `--noise`, a bar of the pixels converged), checkpoints between
+//! passes, and Ctrl-C writing the picture of the samples taken so far.
 
-use super::{Outcome, Run, STOP};
+use super::{Adaptive, Outcome, Run, STOP};
 use snell::film::Film;
 use snell::render::RenderOptions;
 use snell::render::progressive::{
@@ -22,7 +23,14 @@ pub(crate) fn render_passes(
     let pixels = film_grid(s.width, s.height).pixels_in(run.region);
     let mut film = earlier.unwrap_or_else(|| Film::new(s.width, s.height));
     let first = film_samples_in(&film, run.region);
-    run.bar.set_length(pixels * s.spp as u64);
+    // An adaptive render's bar counts the pixels that have converged (its samples are not
+    // known ahead).
+    let adaptive = s.noise.is_some();
+    run.bar.set_length(if adaptive {
+        pixels
+    } else {
+        pixels * s.spp as u64
+    });
     // The ETA is this render's own: the samples left at the rate of the passes finished
     // (none before the first ends: a guess from the first samples of a pass was ten times
     // too long), and no more than what `--time` leaves.
@@ -33,7 +41,11 @@ pub(crate) fn render_passes(
     }
     let mut eta = String::from("ETA …");
     let count = SampleCount::default();
-    let progress = |n: u64| run.bar.set_position(count.after(n));
+    let progress = |n: u64| {
+        if !adaptive {
+            run.bar.set_position(count.after(n))
+        }
+    };
     let options = RenderOptions {
         threads: run.threads,
         progress: &progress,
@@ -45,7 +57,12 @@ pub(crate) fn render_passes(
     let mut error: Option<f32> = None;
     let mut last_save = Instant::now();
     let mut save_error = None;
-    let until = Until { spp: s.spp, time };
+    let until = Until {
+        spp: s.spp,
+        time,
+        noise: s.noise,
+    };
+    let mut converged: Option<u64> = None;
     let done = render_progressive(
         run.scene,
         run.integrator,
@@ -53,15 +70,34 @@ pub(crate) fn render_passes(
         until,
         &options,
         &mut |event, film| match event {
-            PassEvent::Start { from, to } => {
+            PassEvent::Start {
+                from,
+                to,
+                pixels: going_on,
+            } => {
                 count.pass(pixels, from, to);
                 let error = error
                     .map(|e| format!(", error ≈ {:.2} %", 100.0 * e))
                     .unwrap_or_default();
-                run.bar
-                    .set_message(format!("{from} → {to} spp{error}  {eta}"));
+                if adaptive {
+                    let share = 100.0 * converged.unwrap_or(0) as f64 / pixels.max(1) as f64;
+                    run.bar.set_message(format!(
+                        "{from} → {to} spp for {going_on} pixels, {share:.1} % converged{error}"
+                    ));
+                } else {
+                    run.bar
+                        .set_message(format!("{from} → {to} spp{error}  {eta}"));
+                }
             }
-            PassEvent::Done { samples, elapsed } => {
+            PassEvent::Done {
+                samples,
+                elapsed,
+                converged: now,
+            } => {
+                if let Some(c) = now {
+                    converged = Some(c);
+                    run.bar.set_position(c);
+                }
                 if !run.bar.is_hidden() {
                     error = film.estimated_error_in(run.region);
                     let taken = elapsed.as_secs_f64().max(1e-6);
@@ -106,6 +142,24 @@ pub(crate) fn render_passes(
         .unwrap_or(0);
     let ended = done.ended.unwrap_or(Ended::Cancelled);
     let error = film.estimated_error_in(run.region);
+    let adaptive = s.noise.map(|noise| {
+        let taken: Vec<u32> = film.pixels_in(run.region).map(|p| p.samples).collect();
+        Adaptive {
+            noise,
+            fewest: spp,
+            most,
+            total: taken.iter().map(|&n| n as u64).sum(),
+            converged: film
+                .pixels_in(run.region)
+                .filter(|p| {
+                    p.variance_of_mean().is_some_and(|v| {
+                        snell::film::relative_error(v, snell::math::luminance(p.value())) <= noise
+                    })
+                })
+                .count() as u64,
+            pixels,
+        }
+    });
     let image = film.image();
     // The film goes to the checkpoint of an interrupted render, to the variance view, or
     // (copied) to both.
@@ -123,7 +177,15 @@ pub(crate) fn render_passes(
         complete: ended != Ended::Cancelled,
         spp,
         samples: done.samples_added,
-        done: if most > spp {
+        done: if let Some(a) = &adaptive {
+            format!(
+                "{} to {} samples per pixel ({:.1} on average), {:.1} % of pixels below the noise threshold",
+                a.fewest,
+                a.most,
+                a.total as f64 / a.pixels.max(1) as f64,
+                a.share()
+            )
+        } else if most > spp {
             format!(
                 "{spp} samples per pixel ({most} in some tiles) of {}",
                 s.spp
@@ -135,6 +197,7 @@ pub(crate) fn render_passes(
         error,
         film: kept,
         layers: vec![],
+        adaptive,
     })
 }
 

@@ -62,7 +62,10 @@ pub(super) fn print_written(
             settings.width as u64 * settings.height as u64,
         ),
     };
-    let samples = pixels * outcome.spp as u64;
+    let samples = match &outcome.adaptive {
+        Some(a) => a.total,
+        None => pixels * outcome.spp as u64,
+    };
     // A resumed render's rate counts only the samples rendered in this run.
     let resumed_part = if outcome.samples < samples {
         format!(" ({} of them in this run)", outcome.samples)
@@ -73,11 +76,21 @@ pub(super) fn print_written(
         .error
         .map(|e| format!("; estimated error {:.2} %", 100.0 * e))
         .unwrap_or_default();
+    let spp_words = match &outcome.adaptive {
+        Some(a) => format!(
+            "{} to {} spp ({:.1} on average, {:.1} % of pixels below {} % noise)",
+            a.fewest,
+            a.most,
+            a.total as f64 / a.pixels.max(1) as f64,
+            a.share(),
+            (100.0 * a.noise as f64 * 1e4).round() / 1e4
+        ),
+        None => format!("{} spp", outcome.spp),
+    };
     outln!(
-        "wrote {}: {w} x {h}, {} spp{}, {samples} samples{resumed_part} in {elapsed:.2} s ({:.2} M samples/s, {} threads){error}",
+        "wrote {}: {w} x {h}, {spp_words}{}, {samples} samples{resumed_part} in {elapsed:.2} s ({:.2} M samples/s, {} threads){error}",
         out_path.display(),
-        outcome.spp,
-        if outcome.spp < spp {
+        if outcome.spp < spp && outcome.adaptive.is_none() {
             format!(" (--time stopped it short of {spp})")
         } else {
             String::new()

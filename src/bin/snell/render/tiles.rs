@@ -69,5 +69,6 @@ pub(super) fn render_tiles(
         error: None,
         film: None,
         layers: vec![],
+        adaptive: None,
     })
 }
