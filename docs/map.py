@@ -55,6 +55,7 @@ INTRO = {
  'src/texture/': 'Textures and what reads them: patterns (one file each implementing `Paint`, which the `Pattern` enum forwards to), images with their MIP maps and wraps, mappings from surface points to uv, and filtering over a pixel\'s footprint.',
  'src/light/': 'Every light behind one interface, `Emit`, in one list (`Light`, through `closed_set!`): point, spot, directional, area lights and the environment; and the choice of a light for next-event estimation.',
  'src/light/sky/': 'The daylight sky and its sun.',
+ 'src/denoise/': 'Denoising a finished picture: the albedo and normal images that guide a denoiser, made the way Intel Open Image Denoise asks, and its filter, behind the optional `denoise` feature (docs/denoise.md).',
  'src/mesh_file/': 'Mesh files read into plain mesh data (no scene types): OBJ with MTL, PLY, glTF.',
  'src/mesh_file/obj/': 'Wavefront OBJ: the parser, the mesh it builds at the end, MTL libraries and the text helpers both share.',
  'src/mesh_file/ply/': 'Stanford PLY: the header, the plan it gives, the two encodings, and the body read through them.',
@@ -107,7 +108,7 @@ PAGE = {
 ORDER = ['src/','src/math/','src/sampler/','src/geometry/','src/geometry/mesh/','src/accel/','src/accel/wide/',
  'src/bsdf/','src/material/','src/texture/','src/light/','src/light/sky/','src/mesh_file/','src/mesh_file/obj/','src/mesh_file/ply/','src/mesh_file/gltf/',
  'src/scene/','src/scene/format/','src/scene/load/','src/scene/gltf/','src/scene/detail/','src/integrator/','src/integrator/whitted/','src/integrator/bdpt/','src/lpe/',
- 'src/film/','src/render/','src/render/bdpt/','src/render/light/','src/render/lpe/','src/output/','src/bin/snell/','src/bin/snell/render/','src/bin/snell/serve/','src/bin/snell/serve/page/',
+ 'src/film/','src/render/','src/render/bdpt/','src/render/light/','src/render/lpe/','src/denoise/','src/output/','src/bin/snell/','src/bin/snell/render/','src/bin/snell/serve/','src/bin/snell/serve/page/',
  'tests/integration/','tests/integration/cli/','tests/integration/schema/','tests/integration/serve/','benches/','examples/','bench/','fuzz/fuzz_targets/','python/snell_farm/','python/tests/','snell-py/src/','snell-py/python/snell/','snell-py/tests/']
 groups=collections.OrderedDict((d,[]) for d in ORDER)
 for f in files:

@@ -40,6 +40,7 @@ pub mod accel;
 pub mod bsdf;
 pub mod camera;
 pub mod checkpoint;
+pub mod denoise;
 pub mod explain_pixel;
 pub mod film;
 pub mod geometry;

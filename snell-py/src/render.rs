@@ -41,6 +41,7 @@ fn job(
     width: Option<u32>,
     height: Option<u32>,
     integrator_name: Option<&str>,
+    noise: Option<f32>,
 ) -> PyResult<RenderJob> {
     let overrides = Overrides {
         width,
@@ -48,6 +49,7 @@ fn job(
         spp,
         seed,
         integrator: integrator_name.map(integrator).transpose()?,
+        noise,
         ..Overrides::default()
     };
     RenderJob::from_scene(
@@ -66,8 +68,9 @@ fn job(
 /// `complete`, `spp` (samples per pixel taken), `interrupted` (Ctrl-C stopped it),
 /// `aovs` (name to float32 array, height x width x channels), `lpe` (each light path
 /// expression's name to its float32 image: the scene's own and `lpe`'s), `seconds`, `rays`.
+/// `noise`: adaptive sampling's threshold (the scene's `[image] noise` otherwise).
 #[pyfunction]
-#[pyo3(signature = (scene, spp=None, seed=None, width=None, height=None, integrator=None, time=None, threads=None, aovs=None, progress=None, lpe=None))]
+#[pyo3(signature = (scene, spp=None, seed=None, width=None, height=None, integrator=None, time=None, threads=None, aovs=None, progress=None, lpe=None, noise=None))]
 #[allow(clippy::too_many_arguments)]
 pub fn render<'py>(
     py: Python<'py>,
@@ -82,8 +85,9 @@ pub fn render<'py>(
     aovs: Option<Vec<String>>,
     progress: Option<Py<PyAny>>,
     lpe: Option<Vec<String>>,
+    noise: Option<f32>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let job = job(scene, spp, seed, width, height, integrator)?;
+    let job = job(scene, spp, seed, width, height, integrator, noise)?;
     let views = aovs
         .unwrap_or_default()
         .iter()

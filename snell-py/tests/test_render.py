@@ -66,6 +66,21 @@ def test_debug_views_come_back_as_arrays(repo):
     assert v["variance"].shape == (8, 8, 1) and (v["variance"] >= 0).all()
 
 
+def test_adaptive_sampling_gives_the_command_lines_pixels_and_maps_its_samples(repo, run_cli, tmp_path):
+    args = dict(width=32, height=32, spp=256, seed=2)
+    out = snell.render(repo / "scenes/cornell.toml", noise=0.1, aovs=["spp"], **args)
+    spp = out["spp"][..., 0]
+    assert spp.shape == (32, 32) and spp.min() == 16 and spp.max() == 256
+    exr = tmp_path / "cli.exr"
+    run_cli("render", repo / "scenes/cornell.toml", "-o", exr, "--quiet", "--noise", "0.1",
+            "--width", 32, "--height", 32, "--spp", 256, "--seed", 2)
+    assert np.array_equal(out["image"], snell.read(exr))
+    with pytest.raises(snell.SettingsError, match="noise threshold"):
+        snell.render(repo / "scenes/cornell.toml", noise=0.0, width=8, height=8)
+    with pytest.raises(snell.SettingsError, match="path tracer's"):
+        snell.render(repo / "scenes/seed.toml", noise=0.05, width=8, height=8)
+
+
 def test_progress_is_reported_to_the_end_and_its_errors_stop_the_render(repo):
     calls = []
     snell.render(repo / "scenes/seed.toml", width=32, height=32, spp=4,

@@ -225,6 +225,25 @@ fn ramp(t: f32) -> Color {
 }
 
 impl AovBuffers {
+    /// The views read from `film` alone (`variance`, `spp`), the centre rays' views empty
+    /// (nothing hit): for a picture whose film is at hand but whose centre rays are not
+    /// worth tracing (the live preview's).
+    pub fn of_film(film: &Film) -> Self {
+        let n = film.width() as usize * film.height() as usize;
+        let empty = AovSample {
+            normal: Vec3A::ZERO,
+            uv: Vec2::ZERO,
+            depth: f32::INFINITY,
+            albedo: Color::ZERO,
+            object: -1,
+            material: -1,
+            bounces: 0,
+        };
+        let mut b = AovBuffers::from_samples(film.width(), film.height(), &vec![empty; n]);
+        b.read_film(film);
+        b
+    }
+
     /// Takes each pixel's variance, luminance and sample count from the film of the path
     /// tracer's sums the picture was made from.
     pub fn read_film(&mut self, film: &Film) {

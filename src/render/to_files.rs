@@ -266,6 +266,11 @@ impl Outputs {
         Ok(())
     }
 
+    /// Gives up the layer named `name` (its file, if reserved, is not written).
+    pub fn drop_layer(&mut self, name: &str) {
+        self.layers.retain(|l| l.0 != name);
+    }
+
     /// Gives the expressions' images, in the order of [`Outputs::add_layers`].
     pub fn set_layer_images(&mut self, images: Vec<Image>) {
         for (layer, image) in self.layers.iter_mut().zip(images) {

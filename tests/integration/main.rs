@@ -8,6 +8,7 @@ mod bad;
 mod camera;
 mod cli;
 mod csg;
+mod denoise;
 mod detail;
 mod dispersion;
 mod docs;

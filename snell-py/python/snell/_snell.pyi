@@ -59,6 +59,7 @@ def render(
     aovs: Optional[List[str]] = None,
     progress: Optional[Callable[[int, int], Any]] = None,
     lpe: Optional[List[str]] = None,
+    noise: Optional[float] = None,
 ) -> Dict[str, Any]: ...
 def explain(
     scene: NativeScene, x: int, y: int, sample: Optional[int] = None, max_rays: int = 200

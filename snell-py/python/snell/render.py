@@ -73,6 +73,7 @@ def render(
     aovs: Optional[Iterable[str]] = None,
     progress: Progress = None,
     lpe: Optional[Iterable[str]] = None,
+    noise: Optional[float] = None,
 ) -> Union[Image, Dict[str, Any]]:
     """Renders `scene` (a `Scene` or a scene file's path) as `snell render` would, with the
     settings given here in place of the scene's: samples per pixel, seed, size, integrator
@@ -83,8 +84,13 @@ def render(
 
     Returns the picture, an `Image` (float32, height x width x 3, linear: the values an EXR
     of it holds). With `aovs` (debug views: `"normal"`, `"uv"`, `"depth"`, `"albedo"`,
-    `"object"`, `"material"`, `"bounces"`, `"variance"`), returns a dict of arrays: `"image"`
-    and each view (height x width x its channels).
+    `"object"`, `"material"`, `"bounces"`, `"variance"`, `"spp"`), returns a dict of arrays:
+    `"image"` and each view (height x width x its channels).
+
+    `noise`: adaptive sampling (path tracer), as `snell render --noise`: after 16 samples a
+    pixel takes more only while its estimated relative error, or a neighbour's, is above
+    this (`0.01` is 1 %), `spp` the most it takes; the `"spp"` view shows where the samples
+    went. A threshold outside (0, 1] or another integrator raises `SettingsError`.
 
     `lpe`: light path expressions (path tracer), each `"NAME=EXPR"` (`"walls=C<RD'red'>.*L"`)
     or a preset (`"direct"`, `"indirect"`, `"specular"`, `"emission"`, `"caustics"`,
@@ -103,7 +109,7 @@ def render(
     callback = bar if bar is not None else (progress or None)
     try:
         out = _snell.render(built, spp, seed, width, height, integrator, time, threads, views,
-                            callback, expressions)
+                            callback, expressions, noise)
     finally:
         if bar is not None:
             bar.close()

@@ -91,6 +91,11 @@ pub(crate) struct ServeArgs {
     pub(crate) frame: u32,
     #[command(flatten)]
     pub(crate) sampling: SamplingArgs,
+    /// Adaptive sampling (path tracer), as `render --noise`: after 16 samples a pixel, only
+    /// pixels whose estimated relative error, or a neighbour's, is above this take more; the
+    /// page's `spp` view shows where the samples went (overrides `[image] noise`).
+    #[arg(long, allow_negative_numbers = true, value_parser = parse_noise, value_name = "ERROR")]
+    pub(crate) noise: Option<f32>,
     #[command(flatten)]
     pub(crate) limits: LimitArgs,
 }
@@ -198,6 +203,11 @@ pub(crate) struct RenderArgs {
     /// --spp (or the scene's samples) the most it takes (overrides `[image] noise`).
     #[arg(long, allow_negative_numbers = true, value_parser = parse_noise, value_name = "ERROR")]
     pub(crate) noise: Option<f32>,
+    /// Also write the picture denoised by Intel Open Image Denoise, guided by albedo and
+    /// normal images: beside a PNG as NAME.denoised.png, or as the layer `denoised` of an
+    /// EXR. Needs a snell built with the `denoise` feature (docs/denoise.md).
+    #[arg(long)]
+    pub(crate) denoise: bool,
     /// Render only the pixels of columns X0..X1 and rows Y0..Y1 (ends exclusive, (0, 0) the
     /// top left): the same pixels, bit for bit, as that part of the whole render. A PNG holds
     /// the region alone; an EXR holds it at its place in the whole image (its data window).

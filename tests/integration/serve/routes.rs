@@ -111,6 +111,12 @@ fn every_route_answers() {
         assert_eq!(&r.body[1..4], b"PNG", "{view}");
     }
     assert_eq!(get(p, "/view/colour.png").status, 404);
+    // The views read from the path tracer's film are not a Whitted preview's.
+    for view in ["variance", "spp"] {
+        let r = get(p, &format!("/view/{view}.png"));
+        assert_eq!(r.status, 404, "{view}");
+        assert!(r.text().contains("path tracer's"), "{}", r.text());
+    }
     // The light path views (the path tracer's, though the preview is Whitted's), tone mapped
     // as asked; the four that share out every path add up to something brighter than each.
     let mut views = 0;
@@ -589,4 +595,38 @@ fn a_bdpt_scene_is_previewed_bidirectionally() {
         (shown - png).abs() < 1.0,
         "the page's picture {shown}, the PNG {png}"
     );
+}
+
+/// A path-traced preview with `--noise` samples adaptively, as `render --noise` does: it
+/// finishes once every pixel has converged or reached the cap, and its `spp` view maps the
+/// samples (the light's pixels at 16, the dark corners at the cap) and `variance` the noise.
+#[test]
+fn an_adaptive_preview_maps_its_samples() {
+    let dir = super::super::scratch("serve-adaptive");
+    std::fs::create_dir_all(dir.join("scenes")).unwrap();
+    std::fs::copy(
+        super::super::repo("scenes/cornell.toml"),
+        dir.join("scenes/cornell.toml"),
+    )
+    .unwrap();
+    let s = start(
+        &dir,
+        "scenes/cornell.toml",
+        &["--size", "32", "--spp", "128", "--noise", "0.1"],
+    );
+    let st = wait_for(s.port, 60, "a finished picture", |s| {
+        current_frame(s) && s["frame"]["done"] == true
+    });
+    assert_eq!(st["integrator"], "path");
+    let mut seen = 0;
+    for view in ["spp", "variance"] {
+        let r = get(s.port, &format!("/view/{view}.png?id=1"));
+        assert_eq!(r.status, 200, "{view}: {}", r.text());
+        let img = image::load_from_memory(&r.body).unwrap().to_rgb8();
+        assert_eq!(img.dimensions(), (32, 32), "{view}");
+        let colours: std::collections::BTreeSet<[u8; 3]> = img.pixels().map(|p| p.0).collect();
+        assert!(colours.len() >= 3, "{view}: {colours:?}");
+        seen += 1;
+    }
+    assert_eq!(seen, 2);
 }

@@ -113,6 +113,22 @@ fn render_job(
     if let Some(code) = outputs::refuse_outputs_over_inputs(args, &scene, &scene_path, &out_path) {
         return code;
     }
+    // A denoiser that cannot run fails before any work.
+    if args.denoise {
+        match snell::denoise::ready() {
+            Ok(()) => {}
+            Err(snell::denoise::DenoiseError::NotBuilt) => {
+                return usage_error(
+                    "--denoise needs a snell built with the `denoise` feature",
+                    Some(snell::denoise::HOW_TO_BUILD),
+                );
+            }
+            Err(e) => {
+                eprintln!("error: {e}");
+                return ExitCode::from(1);
+            }
+        }
+    }
     let mut pending = match Outputs::reserve(&out_path, &[]) {
         Ok(p) => p,
         Err(e @ OutputError::UnknownFormat(_)) => return usage_error(&e.to_string(), None),
@@ -131,6 +147,7 @@ fn render_job(
             (args.resume.is_some(), "--resume"),
             (!args.aov.is_empty(), "--aov"),
             (args.time.is_some(), "--time"),
+            (args.denoise, "--denoise"),
             // A pixel at the region's edge would read its neighbours outside.
             (
                 scene.settings.noise.is_some(),
@@ -194,6 +211,15 @@ fn render_job(
         layer_names.extend(snell::render::bdpt::strategy_names(
             scene.settings.max_depth,
         ));
+    }
+    if args.denoise {
+        if layer_names.iter().any(|n| n == DENOISED) {
+            return usage_error(
+                "a light path expression named `denoised` would take the denoised picture's file",
+                Some("name the expression otherwise"),
+            );
+        }
+        layer_names.push(DENOISED.into());
     }
     // Separate PNGs are reserved now, like the picture, so a bad path fails before rendering.
     if let Err(e) = pending
@@ -283,6 +309,31 @@ fn render_job(
     bar.finish_and_clear();
     let elapsed = start.elapsed().as_secs_f64();
     let mut outcome = outcome;
+    let (mut denoise_time, mut denoise_failed) = (None, false);
+    if args.denoise {
+        let t = Instant::now();
+        let options = snell::render::RenderOptions {
+            threads,
+            progress: &|_| {},
+            cancel: None,
+            region: None,
+        };
+        let denoised = snell::denoise::guides(&scene, &options)
+            .map_err(|e| e.to_string())
+            .and_then(|g| snell::denoise::denoise(&outcome.image, &g).map_err(|e| e.to_string()));
+        match denoised {
+            Ok(img) => {
+                outcome.layers.push(img);
+                denoise_time = Some(t.elapsed().as_secs_f64());
+            }
+            Err(e) => {
+                // The picture is still written; the exit status says what failed.
+                eprintln!("error: cannot denoise the picture: {e}");
+                pending.drop_layer(DENOISED);
+                denoise_failed = true;
+            }
+        }
+    }
     pending.set_layer_images(std::mem::take(&mut outcome.layers));
     if !outcome.complete {
         // An unfinished picture never replaces a finished one: it goes beside it.
@@ -359,13 +410,31 @@ fn render_job(
             elapsed,
             threads,
         );
+        if let Some(t) = denoise_time {
+            let to = if snell::output::OutputFormat::from_path(&out_path)
+                .is_ok_and(|f| f == snell::output::OutputFormat::Exr)
+            {
+                format!("the layer `{DENOISED}` of {}", out_path.display())
+            } else {
+                Outputs::layer_path(&out_path, DENOISED)
+                    .display()
+                    .to_string()
+            };
+            outln!("denoised it in {t:.2} s (guides and Open Image Denoise): {to}");
+        }
         report::warn_bad_samples(&scene, &outcome.bad_samples);
+    }
+    if denoise_failed {
+        return ExitCode::from(1);
     }
     if args.stats {
         report::print_stats(&scene.stats, load_time, &outcome.rays, elapsed);
     }
     ExitCode::SUCCESS
 }
+
+/// The denoised picture's name: its layer in an EXR, `NAME.denoised.png` beside a PNG.
+const DENOISED: &str = "denoised";
 
 /// What a render came to, whichever way it went (tiles or passes).
 pub(crate) struct Outcome {

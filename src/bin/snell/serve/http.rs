@@ -376,6 +376,9 @@ async fn view(State(ctx): Ctx, Path(file): Path<String>) -> Response {
     let Some(aov) = file.strip_suffix(".png").and_then(Aov::from_name) else {
         return error(StatusCode::NOT_FOUND, "no such view");
     };
+    if aov.from_film() {
+        return film_view(ctx, aov).await;
+    }
     let (scene, generation) = {
         let s = ctx.shared.lock();
         (s.scene.clone(), s.generation)
@@ -405,6 +408,38 @@ async fn view(State(ctx): Ctx, Path(file): Path<String>) -> Response {
             Err(e) => error(
                 StatusCode::INTERNAL_SERVER_ERROR,
                 &format!("cannot render the view: {e}"),
+            ),
+        }
+    })
+    .await
+}
+
+/// A view read from the newest frame's film of sums (`variance`, `spp`): the path tracer's
+/// alone (its samples are random; Whitted's are fixed strata, bdpt's land anywhere).
+async fn film_view(ctx: Arc<Context>, aov: Aov) -> Response {
+    let frame = ctx.shared.lock().frame.clone();
+    let Some(frame) = frame else {
+        return error(StatusCode::NOT_FOUND, "no picture yet");
+    };
+    if frame.film.is_none() {
+        return error(
+            StatusCode::NOT_FOUND,
+            &format!(
+                "the {} view is the path tracer's (its film of samples)",
+                aov.name()
+            ),
+        );
+    }
+    blocking(move || {
+        let Some(film) = &frame.film else {
+            return error(StatusCode::NOT_FOUND, "no film");
+        };
+        let img = snell::integrator::aov::AovBuffers::of_film(film).display(aov, 2);
+        match snell::output::encode_display(&img, &Tone::default(), None) {
+            Ok(png) => bytes("image/png", Arc::new(png)),
+            Err(e) => error(
+                StatusCode::INTERNAL_SERVER_ERROR,
+                &format!("cannot encode the view: {e}"),
             ),
         }
     })

@@ -95,7 +95,10 @@ pub(crate) fn serve(args: ServeArgs) -> ExitCode {
         scene: args.scene.clone(),
         size: args.size,
         frame: args.frame,
-        overrides: args.sampling.overrides(),
+        overrides: snell::job::Overrides {
+            noise: args.noise,
+            ..args.sampling.overrides()
+        },
         limits,
     }));
     let watcher = {

@@ -7,7 +7,8 @@
 use snell::camera::{Camera, CameraView};
 use snell::film::{Film, Image};
 use snell::job::{Overrides, RenderJob};
-use snell::render::{RenderOptions, render_pass};
+use snell::render::adaptive::{Convergence, FIRST_DECISION};
+use snell::render::{RenderOptions, render_pass, render_pass_adaptive};
 use snell::scene::{IntegratorKind, Limits, Scene};
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -60,6 +61,9 @@ pub(crate) struct Frame {
     /// `snell render` writes the PNG with, and what the picture is shown with unless the
     /// page asks otherwise.
     pub tone: snell::output::tone::Tone,
+    /// The path tracer's film of sums the picture was made from, for the views read from
+    /// it (`variance`, `spp`); `None` for Whitted and bdpt.
+    pub film: Option<Film>,
 }
 
 /// Everything the handlers read and the loop and the watcher change.
@@ -416,23 +420,60 @@ fn render(shared: &Shared) -> Result<(), String> {
                 start,
                 rays,
                 done == target,
+                None,
             );
         }
     } else if integrator.uses_sampler() {
         let mut film = Film::new(scene.settings.width, scene.settings.height);
-        let (mut done, mut passes, mut per_sample) = (0u32, 0u32, None::<f64>);
+        // Seconds one sample of one pixel takes, from the last pass.
+        let (mut done, mut passes, mut per_pixel_sample) = (0u32, 0u32, None::<f64>);
+        let noise = scene.settings.noise;
         while done < target && !cancelled() {
+            // Adaptive sampling (`[image] noise`, `--noise`): once every pixel has its first
+            // samples, only the pixels still above the threshold take the pass's.
+            let going_on = noise
+                .filter(|_| done >= FIRST_DECISION)
+                .map(|v| Convergence::of(&film, v, target, None));
+            let pixels = going_on
+                .as_ref()
+                .map_or(film.pixels().len() as u64, |c| c.active());
             // One sample first (the quickest picture), then as many as fill a pass's time.
-            let n = per_sample.map_or(1, |t| ((PASS_TIME / t) as u32).clamp(1, 64));
-            let n = n.min(target - done);
+            let n = per_pixel_sample.map_or(1, |t| {
+                ((PASS_TIME / (t * pixels.max(1) as f64)) as u32).clamp(1, 64)
+            });
+            let mut n = n.min(target - done);
+            // Every pixel takes the first decision's samples before any may stop.
+            if noise.is_some() && done < FIRST_DECISION {
+                n = n.min(FIRST_DECISION - done);
+            }
             let pass_start = Instant::now();
-            let stats = render_pass(&scene, integrator, &mut film, done..done + n, &options)
-                .map_err(|e| e.to_string())?;
-            if stats.tiles_done < film.grid().count() {
+            let before = film.pixels().iter().map(|p| p.samples as u64).sum::<u64>();
+            let (stats, tiles) = match &going_on {
+                Some(c) => {
+                    let tiles = (0..film.grid().count())
+                        .filter(|&t| c.tile_active(t))
+                        .count();
+                    let s =
+                        render_pass_adaptive(&scene, integrator, &mut film, done + n, c, &options);
+                    (s, tiles as u32)
+                }
+                None => (
+                    render_pass(&scene, integrator, &mut film, done..done + n, &options),
+                    film.grid().count(),
+                ),
+            };
+            let stats = stats.map_err(|e| e.to_string())?;
+            if stats.tiles_done < tiles {
                 return Ok(());
             }
-            per_sample = Some(pass_start.elapsed().as_secs_f64() / n as f64);
+            let added = film.pixels().iter().map(|p| p.samples as u64).sum::<u64>() - before;
+            per_pixel_sample = Some(pass_start.elapsed().as_secs_f64() / added.max(1) as f64);
             (done, passes, rays) = (done + n, passes + 1, rays + stats.rays.total());
+            // Done once no pixel goes on, in an adaptive render.
+            let finished = done == target
+                || going_on.is_some_and(|_| {
+                    Convergence::of(&film, noise.unwrap_or(1.0), target, None).active() == 0
+                });
             publish(
                 shared,
                 generation,
@@ -441,8 +482,12 @@ fn render(shared: &Shared) -> Result<(), String> {
                 passes,
                 start,
                 rays,
-                done == target,
+                finished,
+                Some(film.clone()),
             );
+            if finished {
+                break;
+            }
         }
     } else {
         // Whitted's strata depend on the sample count: one sample a pixel first, then all.
@@ -470,6 +515,7 @@ fn render(shared: &Shared) -> Result<(), String> {
                 start,
                 rays,
                 last,
+                None,
             );
         }
     }
@@ -487,6 +533,7 @@ fn publish(
     start: Instant,
     rays: u64,
     done: bool,
+    film: Option<Film>,
 ) {
     let mut s = shared.lock();
     if s.generation != generation {
@@ -509,6 +556,7 @@ fn publish(
         rays_per_second: rays as f64 / elapsed.max(1e-9),
         done,
         tone,
+        film,
     }));
     s.version += 1;
     shared.announce(s);

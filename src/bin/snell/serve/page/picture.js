@@ -15,6 +15,10 @@ function pictureUrl() {
   if (view.startsWith('lpe:')) {
     return `/lpe/${view.slice(4)}.png?g=${status.generation}&exposure=${$('exposure').value}&tone=${$('tone').value}`;
   }
+  // The views read from the film change with every frame; the others with the scene.
+  if (view === 'variance' || view === 'spp') {
+    return status.frame ? `/view/${view}.png?id=${status.frame.id}` : null;
+  }
   if (view !== 'picture') return `/view/${view}.png?g=${status.generation}`;
   if (!status.frame) return null;
   return `/frame.jpg?id=${status.frame.id}&exposure=${$('exposure').value}&tone=${$('tone').value}`;

@@ -1,0 +1,123 @@
+#!/usr/bin/env python3
+"""Adaptive sampling (`--noise`) against uniform sampling, at equal error.
+
+For each scene: a converged reference (a uniform render of many samples, cached in
+WORKDIR), then uniform renders at a rising series of sample counts and adaptive renders at a
+falling series of noise thresholds (capped at --cap samples a pixel), each timed as a whole
+process and measured against the reference. For every adaptive render, the time a uniform
+render would take to reach its error (log-log interpolated between the uniform renders);
+their ratio is what adaptive sampling saves (below 1 it pays).
+
+Two error measures: the mean relative difference (the sum of the absolute differences over
+the sum of the reference, in luminance: the measure the comparisons with Mitsuba use) and
+the relative mean squared error (each pixel's squared difference over its squared value plus
+0.01, averaged: the measure adaptive sampling's threshold aims at).
+
+The scenes: the Cornell box (scenes/cornell.toml) and the courtyard under a sky and a small
+sun (scenes/outdoor-noon.toml, issue 44's kind of scene: an environment and a sun).
+
+How to run
+----------
+    pip install numpy OpenEXR
+    cargo build --release
+    python3 bench/adaptive.py                 # both scenes, 2 threads
+    python3 bench/adaptive.py --scenes cornell --ref-spp 8192
+
+A manual benchmark, not run by CI.
+"""
+import argparse
+import math
+import os
+import subprocess
+import time
+
+import numpy as np
+import OpenEXR
+
+REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+SCENES = {
+    'cornell': ('scenes/cornell.toml', 256, 256),
+    'courtyard': ('scenes/outdoor-noon.toml', 320, 180),
+}
+LUM = np.array([0.2126, 0.7152, 0.0722])
+
+
+def read_exr(path):
+    with OpenEXR.File(path, separate_channels=True) as f:
+        ch = f.channels()
+        return np.stack([ch[c].pixels for c in ('R', 'G', 'B')], -1).astype(np.float64)
+
+
+def render(snell, scene, w, h, out, spp, extra, threads):
+    cmd = [snell, 'render', os.path.join(REPO, scene), '-o', out, '--width', str(w), '--height',
+           str(h), '--spp', str(spp), '--threads', str(threads), '--quiet'] + extra
+    t0 = time.perf_counter()
+    subprocess.run(cmd, check=True)
+    return time.perf_counter() - t0
+
+
+def errors(img, ref):
+    a, b = img @ LUM, ref @ LUM
+    mrd = np.abs(a - b).sum() / b.sum()
+    relmse = np.mean((a - b) ** 2 / (b ** 2 + 0.01))
+    return mrd, relmse
+
+
+def loglog(points, target):
+    """The time at which the (time, error) points reach `target`, log-log interpolated."""
+    pts = sorted(points, key=lambda p: -p[1])
+    for (t0, e0), (t1, e1) in zip(pts, pts[1:]):
+        if e1 <= target <= e0 and e0 > e1:
+            f = (math.log(e0) - math.log(target)) / (math.log(e0) - math.log(e1))
+            return math.exp(math.log(t0) + f * (math.log(t1) - math.log(t0)))
+    return None
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__.split('\n')[0])
+    p.add_argument('--snell', default=os.path.join(REPO, 'target', 'release', 'snell'))
+    p.add_argument('--workdir', default=os.path.join(REPO, 'target', 'adaptive-bench'))
+    p.add_argument('--scenes', default='cornell,courtyard')
+    p.add_argument('--ref-spp', type=int, default=4096)
+    p.add_argument('--spp-list', default='16,32,64,128,256,512')
+    p.add_argument('--noise-list', default='0.2,0.1,0.05,0.03,0.02')
+    p.add_argument('--cap', type=int, default=2048)
+    p.add_argument('--threads', type=int, default=2)
+    p.add_argument('--repeats', type=int, default=2, help='best of N times per render')
+    a = p.parse_args()
+    os.makedirs(a.workdir, exist_ok=True)
+    for name in a.scenes.split(','):
+        scene, w, h = SCENES[name]
+        ref_path = os.path.join(a.workdir, f'{name}-ref-{a.ref_spp}.exr')
+        if not os.path.exists(ref_path):
+            print(f'{name}: reference at {a.ref_spp} spp ...', flush=True)
+            render(a.snell, scene, w, h, ref_path, a.ref_spp, ['--seed', '1000'], a.threads)
+        ref = read_exr(ref_path)
+        out = os.path.join(a.workdir, f'{name}.exr')
+        uniform = []
+        print(f'\n{name} ({w} x {h}), reference {a.ref_spp} spp; whole-process times, best of {a.repeats}')
+        print(f'{"run":>18} {"time s":>8} {"mean rel diff":>14} {"relMSE":>10}')
+        for spp in map(int, a.spp_list.split(',')):
+            t = min(render(a.snell, scene, w, h, out, spp, [], a.threads) for _ in range(a.repeats))
+            mrd, rel = errors(read_exr(out), ref)
+            uniform.append((t, mrd, rel))
+            print(f'{f"uniform {spp}":>18} {t:8.3f} {mrd:14.5f} {rel:10.3e}')
+        ratios = []
+        for noise in a.noise_list.split(','):
+            t = min(render(a.snell, scene, w, h, out, a.cap, ['--noise', noise], a.threads)
+                    for _ in range(a.repeats))
+            mrd, rel = errors(read_exr(out), ref)
+            tm = loglog([(u[0], u[1]) for u in uniform], mrd)
+            tr = loglog([(u[0], u[2]) for u in uniform], rel)
+            fmt = lambda x: f'{x:.3f}' if x else '  -  '  # noqa: E731
+            print(f'{f"noise {noise}":>18} {t:8.3f} {mrd:14.5f} {rel:10.3e}   equal-error time ratio: '
+                  f'{fmt(tm and t / tm)} (mean rel diff), {fmt(tr and t / tr)} (relMSE)')
+            if tm and tr:
+                ratios.append((t / tm, t / tr))
+        if ratios:
+            print(f'{name}: median ratio {np.median([r[0] for r in ratios]):.3f} (mean rel diff), '
+                  f'{np.median([r[1] for r in ratios]):.3f} (relMSE) over {len(ratios)} thresholds')
+
+
+if __name__ == '__main__':
+    main()
