@@ -69,8 +69,10 @@ fn job(
 /// `aovs` (name to float32 array, height x width x channels), `lpe` (each light path
 /// expression's name to its float32 image: the scene's own and `lpe`'s), `seconds`, `rays`.
 /// `noise`: adaptive sampling's threshold (the scene's `[image] noise` otherwise).
+/// `denoise`: also `denoised`, the picture denoised by Open Image Denoise (a build with the
+/// `denoise` feature; otherwise a `SettingsError` saying how to get one, before rendering).
 #[pyfunction]
-#[pyo3(signature = (scene, spp=None, seed=None, width=None, height=None, integrator=None, time=None, threads=None, aovs=None, progress=None, lpe=None, noise=None))]
+#[pyo3(signature = (scene, spp=None, seed=None, width=None, height=None, integrator=None, time=None, threads=None, aovs=None, progress=None, lpe=None, noise=None, denoise=false))]
 #[allow(clippy::too_many_arguments)]
 pub fn render<'py>(
     py: Python<'py>,
@@ -86,8 +88,18 @@ pub fn render<'py>(
     progress: Option<Py<PyAny>>,
     lpe: Option<Vec<String>>,
     noise: Option<f32>,
+    denoise: bool,
 ) -> PyResult<Bound<'py, PyDict>> {
     let job = job(scene, spp, seed, width, height, integrator, noise)?;
+    if denoise {
+        match snell::denoise::ready() {
+            Ok(()) => {}
+            Err(e @ snell::denoise::DenoiseError::NotBuilt) => {
+                return Err(errors::settings(e.to_string()));
+            }
+            Err(e) => return Err(PyRuntimeError::new_err(e.to_string())),
+        }
+    }
     let views = aovs
         .unwrap_or_default()
         .iter()
@@ -185,6 +197,23 @@ pub fn render<'py>(
         layers.set_item(name, image_array(py, img))?;
     }
     out.set_item("lpe", layers)?;
+    if denoise && !interrupted {
+        let options = snell::render::RenderOptions {
+            threads,
+            progress: &|_| {},
+            cancel: None,
+            region: None,
+        };
+        let denoised = py.detach(|| {
+            snell::denoise::guides(&job.scene, &options)
+                .map_err(|e| e.to_string())
+                .and_then(|g| {
+                    snell::denoise::denoise(&finished.image, &g).map_err(|e| e.to_string())
+                })
+        });
+        let denoised = denoised.map_err(PyRuntimeError::new_err)?;
+        out.set_item("denoised", image_array(py, &denoised))?;
+    }
     Ok(out)
 }
 

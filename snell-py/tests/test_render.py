@@ -81,6 +81,13 @@ def test_adaptive_sampling_gives_the_command_lines_pixels_and_maps_its_samples(r
         snell.render(repo / "scenes/seed.toml", noise=0.05, width=8, height=8)
 
 
+def test_denoise_in_a_build_without_the_feature_says_how_to_get_it(repo):
+    # The wheel CI builds has no denoiser: asked for one, it says how to build it, before
+    # rendering.
+    with pytest.raises(snell.SettingsError, match="pip install pyoidn"):
+        snell.render(repo / "scenes/cornell.toml", denoise=True, width=8, height=8)
+
+
 def test_progress_is_reported_to_the_end_and_its_errors_stop_the_render(repo):
     calls = []
     snell.render(repo / "scenes/seed.toml", width=32, height=32, spp=4,

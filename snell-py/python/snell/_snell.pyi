@@ -60,6 +60,7 @@ def render(
     progress: Optional[Callable[[int, int], Any]] = None,
     lpe: Optional[List[str]] = None,
     noise: Optional[float] = None,
+    denoise: bool = False,
 ) -> Dict[str, Any]: ...
 def explain(
     scene: NativeScene, x: int, y: int, sample: Optional[int] = None, max_rays: int = 200

@@ -74,6 +74,7 @@ def render(
     progress: Progress = None,
     lpe: Optional[Iterable[str]] = None,
     noise: Optional[float] = None,
+    denoise: bool = False,
 ) -> Union[Image, Dict[str, Any]]:
     """Renders `scene` (a `Scene` or a scene file's path) as `snell render` would, with the
     settings given here in place of the scene's: samples per pixel, seed, size, integrator
@@ -92,6 +93,11 @@ def render(
     this (`0.01` is 1 %), `spp` the most it takes; the `"spp"` view shows where the samples
     went. A threshold outside (0, 1] or another integrator raises `SettingsError`.
 
+    `denoise=True`: the dict also holds `"denoised"`, the picture denoised by Intel Open Image
+    Denoise (as `snell render --denoise`), where the module was built with the `denoise`
+    feature (docs/denoise.md); otherwise `SettingsError` says how to build it, before any
+    work.
+
     `lpe`: light path expressions (path tracer), each `"NAME=EXPR"` (`"walls=C<RD'red'>.*L"`)
     or a preset (`"direct"`, `"indirect"`, `"specular"`, `"emission"`, `"caustics"`,
     `"per-light"`); see docs/lpe.md. With them, or with a scene that lists its own
@@ -109,7 +115,7 @@ def render(
     callback = bar if bar is not None else (progress or None)
     try:
         out = _snell.render(built, spp, seed, width, height, integrator, time, threads, views,
-                            callback, expressions, noise)
+                            callback, expressions, noise, denoise)
     finally:
         if bar is not None:
             bar.close()
@@ -118,13 +124,16 @@ def render(
                   complete=out["complete"])
     if out["interrupted"]:
         raise Interrupted(image)
-    if aovs is None and lpe is None and not out["lpe"]:
+    if aovs is None and lpe is None and not out["lpe"] and not denoise:
         return image
     result: Dict[str, Any] = {"image": image}
     result.update(out["aovs"])
     for name, layer in out["lpe"].items():
         result[name] = Image(layer, exposure=exposure, tonemap=tonemap, spp=out["spp"],
                              complete=out["complete"])
+    if "denoised" in out:
+        result["denoised"] = Image(out["denoised"], exposure=exposure, tonemap=tonemap,
+                                   spp=out["spp"], complete=out["complete"])
     return result
 
 

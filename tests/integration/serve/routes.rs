@@ -111,6 +111,16 @@ fn every_route_answers() {
         assert_eq!(&r.body[1..4], b"PNG", "{view}");
     }
     assert_eq!(get(p, "/view/colour.png").status, 404);
+    // The denoised picture: without the feature, a 404 that says how to build it.
+    if !snell::denoise::AVAILABLE {
+        let r = get(p, "/denoised.png?g=1");
+        assert_eq!(r.status, 404);
+        assert!(r.text().contains("pip install pyoidn"), "{}", r.text());
+    }
+    assert_eq!(
+        get(p, "/denoised.png?g=1&tone=sepia").status,
+        if snell::denoise::AVAILABLE { 400 } else { 404 }
+    );
     // The views read from the path tracer's film are not a Whitted preview's.
     for view in ["variance", "spp"] {
         let r = get(p, &format!("/view/{view}.png"));
@@ -629,4 +639,28 @@ fn an_adaptive_preview_maps_its_samples() {
         seen += 1;
     }
     assert_eq!(seen, 2);
+}
+
+/// With the `denoise` feature, the preview's denoised picture: the newest frame denoised, a
+/// PNG of the preview's size; a bad tone is refused.
+#[cfg(feature = "denoise")]
+#[test]
+fn the_preview_shows_the_picture_denoised() {
+    let dir = super::super::scratch("serve-denoised");
+    std::fs::create_dir_all(dir.join("scenes")).unwrap();
+    std::fs::copy(
+        super::super::repo("scenes/cornell.toml"),
+        dir.join("scenes/cornell.toml"),
+    )
+    .unwrap();
+    let s = start(&dir, "scenes/cornell.toml", &["--size", "48", "--spp", "8"]);
+    wait_for(s.port, 60, "a finished picture", |s| {
+        current_frame(s) && s["frame"]["done"] == true
+    });
+    let r = get(s.port, "/denoised.png?g=1&exposure=0&tone=clamp");
+    assert_eq!(r.status, 200, "{}", r.text());
+    let img = image::load_from_memory(&r.body).unwrap().to_rgb8();
+    assert_eq!(img.dimensions(), (48, 48));
+    assert!(img.pixels().any(|p| p.0[0] > 100), "something is lit");
+    assert_eq!(get(s.port, "/denoised.png?g=1&tone=sepia").status, 400);
 }

@@ -108,6 +108,7 @@ pub(crate) fn router(ctx: Arc<Context>) -> Router {
         .route("/view/{file}", get(view))
         .route("/explain", get(explain))
         .route("/lpe/{file}", get(super::paths::view))
+        .route("/denoised.png", get(super::denoised::picture))
         .route("/paths", get(super::paths::pixel))
         .route("/pick", get(pick))
         .route("/camera", post(camera))

@@ -4,6 +4,7 @@
 //! a small tokio runtime), preview.rs holds the state and runs the render loop on a thread
 //! of its own, watch.rs watches the files.
 
+mod denoised;
 mod http;
 mod lab;
 mod paths;

@@ -26,8 +26,8 @@ const PIXEL_SAMPLES: u32 = 256;
 pub(crate) struct ViewQuery {
     #[allow(dead_code)]
     g: Option<u64>,
-    exposure: Option<f32>,
-    tone: Option<String>,
+    pub(crate) exposure: Option<f32>,
+    pub(crate) tone: Option<String>,
 }
 
 /// `GET /lpe/NAME.png`: preset NAME's image of the scene shown (at most [`VIEW_SPP`]

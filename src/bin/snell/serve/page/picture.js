@@ -15,6 +15,9 @@ function pictureUrl() {
   if (view.startsWith('lpe:')) {
     return `/lpe/${view.slice(4)}.png?g=${status.generation}&exposure=${$('exposure').value}&tone=${$('tone').value}`;
   }
+  if (view === 'denoised') {
+    return status.frame ? `/denoised.png?g=${status.frame.id}&exposure=${$('exposure').value}&tone=${$('tone').value}` : null;
+  }
   // The views read from the film change with every frame; the others with the scene.
   if (view === 'variance' || view === 'spp') {
     return status.frame ? `/view/${view}.png?id=${status.frame.id}` : null;

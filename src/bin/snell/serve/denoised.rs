@@ -1,0 +1,74 @@
+//! The preview's denoised picture (`/denoised.png`): the newest frame denoised by Open Image
+//! Denoise, guided by the scene's albedo and normal images, tone mapped as the page asks; in
+//! a build without the `denoise` feature, a 404 that says how to build one.
+
+use super::http::{Asked, Context, blocking, error};
+use super::paths::ViewQuery;
+use axum::extract::{Query, State};
+use axum::http::{StatusCode, header};
+use axum::response::{IntoResponse, Response};
+use snell::output::tone::{Tone, ToneCurve};
+use std::sync::Arc;
+
+/// `GET /denoised.png?g=FRAME&exposure=STOPS&tone=CURVE`: the newest frame, denoised (`g`
+/// only tells frames apart for the browser's cache).
+pub(crate) async fn picture(State(ctx): State<Arc<Context>>, q: Asked<ViewQuery>) -> Response {
+    if !snell::denoise::AVAILABLE {
+        return error(
+            StatusCode::NOT_FOUND,
+            &snell::denoise::DenoiseError::NotBuilt.to_string(),
+        );
+    }
+    let Ok(Query(q)) = q else {
+        return error(
+            StatusCode::BAD_REQUEST,
+            "the picture takes g, exposure and tone",
+        );
+    };
+    if q.exposure
+        .is_some_and(|e| !(e.is_finite() && e.abs() <= 20.0))
+    {
+        return error(
+            StatusCode::BAD_REQUEST,
+            "exposure is a number of stops from -20 to 20",
+        );
+    }
+    let curve = match q.tone.as_deref().map(ToneCurve::from_name) {
+        None => None,
+        Some(Some(c)) => Some(c),
+        Some(None) => return error(StatusCode::BAD_REQUEST, "tone is clamp, reinhard or aces"),
+    };
+    let (scene, frame) = {
+        let s = ctx.shared.lock();
+        (s.scene.clone(), s.frame.clone())
+    };
+    let (Some(scene), Some(frame)) = (scene, frame) else {
+        return error(StatusCode::NOT_FOUND, "no picture yet");
+    };
+    let tone = Tone {
+        exposure: q.exposure.unwrap_or(frame.tone.exposure),
+        curve: curve.unwrap_or(frame.tone.curve),
+    };
+    blocking(move || {
+        let options = snell::render::RenderOptions {
+            threads: None,
+            progress: &|_| {},
+            cancel: None,
+            region: None,
+        };
+        let denoised = snell::denoise::guides(&scene, &options)
+            .map_err(|e| e.to_string())
+            .and_then(|g| snell::denoise::denoise(&frame.image, &g).map_err(|e| e.to_string()))
+            .and_then(|img| {
+                snell::output::encode_display(&img, &tone, None).map_err(|e| e.to_string())
+            });
+        match denoised {
+            Ok(png) => ([(header::CONTENT_TYPE, "image/png")], png).into_response(),
+            Err(e) => error(
+                StatusCode::INTERNAL_SERVER_ERROR,
+                &format!("cannot denoise the picture: {e}"),
+            ),
+        }
+    })
+    .await
+}
