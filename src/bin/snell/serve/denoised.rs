@@ -7,7 +7,7 @@ use super::paths::ViewQuery;
 use axum::extract::{Query, State};
 use axum::http::{StatusCode, header};
 use axum::response::{IntoResponse, Response};
-use snell::output::tone::{Tone, ToneCurve};
+use snell::output::tone::Tone;
 use std::sync::Arc;
 
 /// `GET /denoised.png?g=FRAME&exposure=STOPS&tone=CURVE`: the newest frame, denoised (`g`
@@ -25,18 +25,9 @@ pub(crate) async fn picture(State(ctx): State<Arc<Context>>, q: Asked<ViewQuery>
             "the picture takes g, exposure and tone",
         );
     };
-    if q.exposure
-        .is_some_and(|e| !(e.is_finite() && e.abs() <= 20.0))
-    {
-        return error(
-            StatusCode::BAD_REQUEST,
-            "exposure is a number of stops from -20 to 20",
-        );
-    }
-    let curve = match q.tone.as_deref().map(ToneCurve::from_name) {
-        None => None,
-        Some(Some(c)) => Some(c),
-        Some(None) => return error(StatusCode::BAD_REQUEST, "tone is clamp, reinhard or aces"),
+    let (exposure, curve) = match q.asked() {
+        Ok(asked) => asked,
+        Err(refused) => return *refused,
     };
     let (scene, frame) = {
         let s = ctx.shared.lock();
@@ -46,7 +37,7 @@ pub(crate) async fn picture(State(ctx): State<Arc<Context>>, q: Asked<ViewQuery>
         return error(StatusCode::NOT_FOUND, "no picture yet");
     };
     let tone = Tone {
-        exposure: q.exposure.unwrap_or(frame.tone.exposure),
+        exposure: exposure.unwrap_or(frame.tone.exposure),
         curve: curve.unwrap_or(frame.tone.curve),
     };
     blocking(move || {

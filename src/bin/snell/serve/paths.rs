@@ -26,8 +26,32 @@ const PIXEL_SAMPLES: u32 = 256;
 pub(crate) struct ViewQuery {
     #[allow(dead_code)]
     g: Option<u64>,
-    pub(crate) exposure: Option<f32>,
-    pub(crate) tone: Option<String>,
+    exposure: Option<f32>,
+    tone: Option<String>,
+}
+
+impl ViewQuery {
+    /// The exposure and tone curve asked for (each `None` where not given), or the answer
+    /// that refuses them (boxed: a response is large).
+    pub(crate) fn asked(&self) -> Result<(Option<f32>, Option<ToneCurve>), Box<Response>> {
+        if self
+            .exposure
+            .is_some_and(|e| !(e.is_finite() && e.abs() <= 20.0))
+        {
+            return Err(Box::new(error(
+                StatusCode::BAD_REQUEST,
+                "exposure is a number of stops from -20 to 20",
+            )));
+        }
+        match self.tone.as_deref().map(ToneCurve::from_name) {
+            None => Ok((self.exposure, None)),
+            Some(Some(c)) => Ok((self.exposure, Some(c))),
+            Some(None) => Err(Box::new(error(
+                StatusCode::BAD_REQUEST,
+                "tone is clamp, reinhard or aces",
+            ))),
+        }
+    }
 }
 
 /// `GET /lpe/NAME.png`: preset NAME's image of the scene shown (at most [`VIEW_SPP`]
@@ -50,18 +74,9 @@ pub(crate) async fn view(
             "the view takes g, exposure and tone",
         );
     };
-    if q.exposure
-        .is_some_and(|e| !(e.is_finite() && e.abs() <= 20.0))
-    {
-        return error(
-            StatusCode::BAD_REQUEST,
-            "exposure is a number of stops from -20 to 20",
-        );
-    }
-    let curve = match q.tone.as_deref().map(ToneCurve::from_name) {
-        None => None,
-        Some(Some(c)) => Some(c),
-        Some(None) => return error(StatusCode::BAD_REQUEST, "tone is clamp, reinhard or aces"),
+    let (exposure, curve) = match q.asked() {
+        Ok(asked) => asked,
+        Err(refused) => return *refused,
     };
     let (scene, generation) = {
         let s = ctx.shared.lock();
@@ -118,7 +133,7 @@ pub(crate) async fn view(
         };
         let t = scene.settings.tone;
         let tone = Tone {
-            exposure: q.exposure.unwrap_or(t.exposure),
+            exposure: exposure.unwrap_or(t.exposure),
             curve: curve.unwrap_or(t.curve),
         };
         match snell::output::encode_display(&image, &tone, None) {
