@@ -45,10 +45,11 @@ pub fn ready() -> Result<(), DenoiseError> {
 }
 
 /// `image` (linear, high dynamic range) denoised by OIDN's ray tracing filter, guided by
-/// `guides` of the same size. The light the pixels see emitted ([`Guides::light`]) is taken
-/// out before the filter and added back after it: a lamp seen directly has no noise worth
-/// removing, and the filter, made for pictures people look at, moved the Cornell box's
-/// lamp 20 % brighter and smeared its edge over the ceiling.
+/// `guides` of the same size. The light the pixels see emitted is taken out before the
+/// filter, as the render sampled it ([`Guides::light`]), and added back after it, sharp
+/// ([`Guides::sharp_light`]): a lamp seen directly has no noise worth removing, only its
+/// edge's place in a pixel, and the filter, made for pictures people look at, moved the
+/// Cornell box's lamp 20 % brighter and smeared its edge over the ceiling.
 pub fn denoise(image: &Image, guides: &Guides) -> Result<Image, DenoiseError> {
     if (guides.width, guides.height) != (image.width, image.height) {
         return Err(DenoiseError::Size(
@@ -63,7 +64,7 @@ pub fn denoise(image: &Image, guides: &Guides) -> Result<Image, DenoiseError> {
         *p = (*p - e).max(Color::ZERO);
     }
     let mut out = filtered(&reflected, guides)?;
-    for (p, &e) in out.pixels.iter_mut().zip(&guides.light) {
+    for (p, &e) in out.pixels.iter_mut().zip(&guides.sharp_light) {
         *p += e;
     }
     Ok(out)
@@ -98,6 +99,7 @@ mod tests {
             albedo: vec![Color::ONE; 2],
             normal: vec![Vec3A::Z; 2],
             light: vec![Color::ZERO; 2],
+            sharp_light: vec![Color::ZERO; 2],
         };
         assert!(matches!(
             denoise(&raw, &guides),
@@ -109,6 +111,7 @@ mod tests {
                 albedo: vec![Color::ONE; 3],
                 normal: vec![Vec3A::Z; 3],
                 light: vec![Color::ZERO; 3],
+                sharp_light: vec![Color::ZERO; 3],
                 ..guides
             };
             let e = denoise(&raw, &fits).unwrap_err();
