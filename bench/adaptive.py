@@ -15,19 +15,35 @@ relative mean squared error (each pixel's squared difference over its squared va
 + 0.01)`, the threshold's own measure: how far off the worst pixels are, which is what a
 threshold on every pixel promises to bound).
 
-The scenes: the Cornell box (scenes/cornell.toml) and the courtyard under a sky and a small
-sun (scenes/outdoor-noon.toml, issue 44's kind of scene: an environment and a sun).
+The scenes: the Cornell box (scenes/cornell.toml); `env`, issue 44's environment scene (four
+balls of metal, glass, chalk and mirror on a disk under a generated sky with a 3-degree sun,
+320 x 180, written into WORKDIR by bench/vs-mitsuba-env.py's own functions); and the
+courtyard (scenes/outdoor-noon.toml, a sky and a real-sized sun, whose caustics through glass
+are fireflies that rule every error measure).
+
+What any allocation could do
+----------------------------
+The reference is rendered with the variance view, which gives each pixel's spread per sample
+(sigma) and mean (mu). From them, before any timing, the script prints what sampling the same
+pixels differently could gain at best, as a share of uniform sampling's samples at equal
+expected error: samples in proportion to sigma^(2/3) (the least mean absolute error for a
+given total), in proportion to sigma / sqrt(mu^2 + 0.01) (the least relative MSE), and the
+ideal threshold (each pixel exactly the samples that bring its relative error to the
+threshold, none below 16 or above the cap: what `--noise` aims at, with its noise estimates
+exact). Where the first two are above 0.7, no allocation of samples to pixels reaches the
+goal on that scene, however well it estimates the noise.
 
 How to run
 ----------
     pip install numpy OpenEXR
     cargo build --release
-    python3 bench/adaptive.py                 # both scenes, 2 threads
+    python3 bench/adaptive.py                 # the Cornell box and the environment scene, 2 threads
     python3 bench/adaptive.py --scenes cornell --ref-spp 8192
 
 A manual benchmark, not run by CI.
 """
 import argparse
+import importlib.util
 import math
 import os
 import subprocess
@@ -39,15 +55,58 @@ import OpenEXR
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 SCENES = {
     'cornell': ('scenes/cornell.toml', 256, 256),
+    'env': (None, 320, 180),  # written into the work folder by env_scene()
     'courtyard': ('scenes/outdoor-noon.toml', 320, 180),
 }
 LUM = np.array([0.2126, 0.7152, 0.0722])
 
 
-def read_exr(path):
+def read_exr(path, layer=None):
     with OpenEXR.File(path, separate_channels=True) as f:
         ch = f.channels()
+        if layer:
+            return ch[layer].pixels.astype(np.float64)
         return np.stack([ch[c].pixels for c in ('R', 'G', 'B')], -1).astype(np.float64)
+
+
+def env_scene(workdir):
+    """Issue 44's environment scene (bench/vs-mitsuba-env.py's, with its generated sun and
+    sky), written into `workdir`; its path."""
+    spec = importlib.util.spec_from_file_location('vs_mitsuba_env', os.path.join(REPO, 'bench', 'vs-mitsuba-env.py'))
+    env = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(env)
+    sky = os.path.join(workdir, 'sun-sky.exr')
+    if not os.path.exists(sky):
+        env.sun_sky(sky)
+    path = os.path.join(workdir, 'env.toml')
+    with open(path, 'w') as f:
+        f.write(env.snell_toml('sun-sky.exr', 0, 'sobol'))
+    return path
+
+
+def bounds(ref, variance, ref_spp, cap, noise_list):
+    """What allocating samples to pixels could gain at best (see the module's doc), from the
+    reference's colours and its variance view (the variance of its mean at `ref_spp`)."""
+    mu = (ref @ LUM).ravel()
+    sigma = np.sqrt(np.maximum(variance.ravel(), 0) * ref_spp)
+    a = sigma / np.sqrt(mu ** 2 + 0.01)
+    rho = sigma / (mu + 0.01)
+
+    def shares(n):
+        # Samples n per pixel against uniform's at the same expected error: mean absolute
+        # error goes as sum(sigma / sqrt(n)), relative MSE as sum(a^2 / n).
+        m = n.mean()
+        return ((np.sum(sigma / np.sqrt(n)) / (np.sum(sigma) / math.sqrt(m))) ** 2,
+                np.sum(a ** 2 / n) / (np.sum(a ** 2) / m))
+
+    s23 = np.sum(sigma ** (2 / 3))
+    print(f'best any allocation: {s23 ** 3 / (sigma.size * np.sum(sigma) ** 2):.3f} (mean rel diff, '
+          f'n ~ sigma^(2/3)), {np.sum(a) ** 2 / (a.size * np.sum(a ** 2)):.3f} (relMSE, n ~ a) of uniform\'s samples')
+    for noise in noise_list:
+        n = np.clip(rho ** 2 / noise ** 2, 16, cap)
+        ma, rel = shares(n)
+        print(f'ideal threshold {noise:g}: {n.mean():.1f} spp on average, {ma:.3f} (mean rel diff), '
+              f'{rel:.3f} (relMSE) of uniform\'s samples')
 
 
 def render(snell, scene, w, h, out, spp, extra, threads):
@@ -80,7 +139,7 @@ def main():
     p = argparse.ArgumentParser(description=__doc__.split('\n')[0])
     p.add_argument('--snell', default=os.path.join(REPO, 'target', 'release', 'snell'))
     p.add_argument('--workdir', default=os.path.join(REPO, 'target', 'adaptive-bench'))
-    p.add_argument('--scenes', default='cornell,courtyard')
+    p.add_argument('--scenes', default='cornell,env')
     p.add_argument('--ref-spp', type=int, default=4096)
     p.add_argument('--spp-list', default='16,32,64,128,256,512')
     p.add_argument('--noise-list', default='0.2,0.1,0.05,0.03,0.02')
@@ -91,14 +150,17 @@ def main():
     os.makedirs(a.workdir, exist_ok=True)
     for name in a.scenes.split(','):
         scene, w, h = SCENES[name]
+        scene = scene or env_scene(a.workdir)
         ref_path = os.path.join(a.workdir, f'{name}-ref-{a.ref_spp}.exr')
         if not os.path.exists(ref_path):
             print(f'{name}: reference at {a.ref_spp} spp ...', flush=True)
-            render(a.snell, scene, w, h, ref_path, a.ref_spp, ['--seed', '1000'], a.threads)
+            render(a.snell, scene, w, h, ref_path, a.ref_spp, ['--seed', '1000', '--aov', 'variance'], a.threads)
         ref = read_exr(ref_path)
         out = os.path.join(a.workdir, f'{name}.exr')
         uniform = []
+        noise_list = [float(x) for x in a.noise_list.split(',')]
         print(f'\n{name} ({w} x {h}), reference {a.ref_spp} spp; whole-process times, best of {a.repeats}')
+        bounds(ref, read_exr(ref_path, 'variance.Y'), a.ref_spp, a.cap, noise_list)
         print(f'{"run":>18} {"time s":>8} {"mean rel diff":>14} {"relMSE":>10} {"p95 rel":>8}')
         for spp in map(int, a.spp_list.split(',')):
             t = min(render(a.snell, scene, w, h, out, spp, [], a.threads) for _ in range(a.repeats))
@@ -106,8 +168,8 @@ def main():
             uniform.append((t, mrd, rel, p95))
             print(f'{f"uniform {spp}":>18} {t:8.3f} {mrd:14.5f} {rel:10.3e} {p95:8.4f}')
         ratios = []
-        for noise in a.noise_list.split(','):
-            t = min(render(a.snell, scene, w, h, out, a.cap, ['--noise', noise], a.threads)
+        for noise in noise_list:
+            t = min(render(a.snell, scene, w, h, out, a.cap, ['--noise', str(noise)], a.threads)
                     for _ in range(a.repeats))
             mrd, rel, p95 = errors(read_exr(out), ref)
             tm = loglog([(u[0], u[1]) for u in uniform], mrd)

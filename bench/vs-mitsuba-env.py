@@ -21,7 +21,7 @@ rotate(y, ROTATE + 180).
 
 How to run
 ----------
-    pip install mitsuba numpy && apt-get install libllvm19
+    pip install mitsuba numpy OpenEXR && apt-get install libllvm19
     cargo build --release
     python3 bench/vs-mitsuba-env.py --repeats 3 --spp-list 8,12,16,20,24,32,48 --no-stop
     python3 bench/vs-mitsuba-env.py --env assets/env/studio.hdr --rotate -90
@@ -140,10 +140,10 @@ def mitsuba_scene(mi, env, rotate):
 
 def sun_sky(path, width=2048, height=1024, sun_elevation=40.0, sun_azimuth=30.0, sun_degrees=3.0):
     """Writes the generated sky (see the module's doc) as a float RGB EXR at `path`: rows are
-    latitudes (the top row the zenith), columns longitudes, as every equirectangular map."""
+    latitudes (the top row the zenith), columns longitudes, as every equirectangular map.
+    Needs numpy and OpenEXR only (bench/adaptive.py lights a scene with it too)."""
     import numpy as np
-    import mitsuba as mi
-    mi.set_variant('scalar_rgb')
+    import OpenEXR
     v = (np.arange(height) + 0.5) / height
     u = (np.arange(width) + 0.5) / width
     lat = np.pi * (0.5 - v)[:, None] * np.ones((1, width))
@@ -163,7 +163,8 @@ def sun_sky(path, width=2048, height=1024, sun_elevation=40.0, sun_azimuth=30.0,
     radiance = 4 * np.pi * 0.55 / (solid * np.sin(e))
     inside = (d @ s) > np.cos(half)
     img[inside] = np.array([1.0, 0.95, 0.85]) * radiance
-    mi.Bitmap(img.astype(np.float32)).write(path)
+    header = {'compression': OpenEXR.ZIP_COMPRESSION, 'type': OpenEXR.scanlineimage}
+    OpenEXR.File(header, {'RGB': img.astype(np.float32)}).write(path)
 
 
 def main():
