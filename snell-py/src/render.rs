@@ -205,7 +205,7 @@ pub fn render<'py>(
             region: None,
         };
         let denoised = py.detach(|| {
-            snell::denoise::guides(&job.scene, &options)
+            snell::denoise::guides(&job.scene, finished.spp, &options)
                 .map_err(|e| e.to_string())
                 .and_then(|g| {
                     snell::denoise::denoise(&finished.image, &g).map_err(|e| e.to_string())

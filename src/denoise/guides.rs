@@ -65,9 +65,13 @@ struct GuideSample {
     light: Color,
 }
 
-/// The guides of `scene`'s picture, on `options.threads` (through the render loop every
-/// render takes, so its tiles, threads and cancellation are the picture's).
-pub fn guides(scene: &Scene, options: &RenderOptions) -> Result<Guides, RenderError> {
+/// The guides of `scene`'s picture when it has `samples` samples a pixel (the fewest any
+/// pixel has: a render stopped by its time limit, a preview's pass, has fewer than the
+/// scene asks), on `options.threads` (through the render loop every render takes, so its
+/// tiles, threads and cancellation are the picture's). The light seen emitted is taken over
+/// the same first samples as the picture's, so that the picture less that light is what it
+/// reflects.
+pub fn guides(scene: &Scene, samples: u32, options: &RenderOptions) -> Result<Guides, RenderError> {
     let s = &scene.settings;
     let (width, height) = (s.width, s.height);
     let mut film: crate::film::Film<GuideSample> = crate::film::Film::new(width, height);
@@ -97,7 +101,7 @@ pub fn guides(scene: &Scene, options: &RenderOptions) -> Result<Guides, RenderEr
             GuideSample::default()
         }
     };
-    let n = s.spp.clamp(1, GUIDE_SAMPLES);
+    let n = samples.clamp(1, GUIDE_SAMPLES);
     let work = |x: u32, y: u32, out: &mut GuideSample, _: &mut ()| *out = average(x, y, 0..n);
     crate::render::for_each_tile(&mut film, options, |_| false, work, |_, _| {})?;
     let rows = film.into_rows();
@@ -262,6 +266,7 @@ mod tests {
     fn a_diffuse_wall_gives_its_albedo_and_normal() {
         let g = guides(
             &scene("[[objects]]\ntype = \"plane\"\npoint = [0, 0, -1]\nnormal = [0, 0, 1]\nmaterial = \"red\"\n"),
+            4,
             &options(),
         )
         .unwrap();
@@ -276,7 +281,7 @@ mod tests {
             checked += 1;
         }
         assert_eq!(checked, 96);
-        let sky = guides(&scene(""), &options()).unwrap();
+        let sky = guides(&scene(""), 4, &options()).unwrap();
         assert!(sky.albedo.iter().all(|a| *a == Color::new(0.2, 0.4, 1.0)));
         assert!(sky.normal.iter().all(|n| *n == Vec3A::ZERO));
         assert!(g.light.iter().chain(&sky.light).all(|l| *l == Color::ZERO));
@@ -291,6 +296,7 @@ mod tests {
                 "[[objects]]\ntype = \"plane\"\npoint = [0, 0, -1]\nnormal = [0, 0, 1]\nmaterial = \"mirror\"\n\
                  [[objects]]\ntype = \"plane\"\npoint = [0, 0, 9]\nnormal = [0, 0, -1]\nmaterial = \"red\"\n",
             ),
+            4,
             &options(),
         )
         .unwrap();
@@ -315,6 +321,7 @@ mod tests {
                 "[[objects]]\ntype = \"plane\"\npoint = [0, 0, -1]\nnormal = [0, 0, 1]\nmaterial = \"mirror\"\n\
                  [[objects]]\ntype = \"plane\"\npoint = [0, 0, 9]\nnormal = [0, 0, -1]\nmaterial = \"lamp\"\n",
             ),
+            4,
             &options(),
         )
         .unwrap();
@@ -351,7 +358,7 @@ mod tests {
             Format::Toml,
         )
         .unwrap();
-        let g = guides(&scene, &options()).unwrap();
+        let g = guides(&scene, 16, &options()).unwrap();
         let mut converged = scene.clone();
         converged.settings.spp = 4096;
         let reference =

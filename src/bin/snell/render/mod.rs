@@ -318,7 +318,7 @@ fn render_job(
             cancel: None,
             region: None,
         };
-        let denoised = snell::denoise::guides(&scene, &options)
+        let denoised = snell::denoise::guides(&scene, outcome.spp, &options)
             .map_err(|e| e.to_string())
             .and_then(|g| snell::denoise::denoise(&outcome.image, &g).map_err(|e| e.to_string()));
         match denoised {

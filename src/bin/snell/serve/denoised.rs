@@ -1,12 +1,15 @@
 //! The preview's denoised picture (`/denoised.png`): the newest frame denoised by Open Image
-//! Denoise, guided by the scene's albedo and normal images, tone mapped as the page asks; in
-//! a build without the `denoise` feature, a 404 that says how to build one.
+//! Denoise, guided by the scene's albedo and normal images (made once a render and kept
+//! while its frames have the same first samples), tone mapped as the page asks; in a build
+//! without the `denoise` feature, a 404 that says how to build one.
 
 use super::http::{Asked, Context, blocking, error};
 use super::paths::ViewQuery;
+use super::preview::Frame;
 use axum::extract::{Query, State};
 use axum::http::{StatusCode, header};
 use axum::response::{IntoResponse, Response};
+use snell::denoise::guides::GUIDE_SAMPLES;
 use snell::output::tone::Tone;
 use std::sync::Arc;
 
@@ -41,14 +44,7 @@ pub(crate) async fn picture(State(ctx): State<Arc<Context>>, q: Asked<ViewQuery>
         curve: curve.unwrap_or(frame.tone.curve),
     };
     blocking(move || {
-        let options = snell::render::RenderOptions {
-            threads: None,
-            progress: &|_| {},
-            cancel: None,
-            region: None,
-        };
-        let denoised = snell::denoise::guides(&scene, &options)
-            .map_err(|e| e.to_string())
+        let denoised = guides(&ctx, &scene, &frame)
             .and_then(|g| snell::denoise::denoise(&frame.image, &g).map_err(|e| e.to_string()))
             .and_then(|img| {
                 snell::output::encode_display(&img, &tone, None).map_err(|e| e.to_string())
@@ -62,4 +58,30 @@ pub(crate) async fn picture(State(ctx): State<Arc<Context>>, q: Asked<ViewQuery>
         }
     })
     .await
+}
+
+/// The guides of `frame` (of `scene`): those kept, where they were made for its render and
+/// its first samples (guides follow at most [`GUIDE_SAMPLES`] of them), else made now and
+/// kept.
+fn guides(
+    ctx: &Context,
+    scene: &snell::scene::Scene,
+    frame: &Frame,
+) -> Result<Arc<snell::denoise::Guides>, String> {
+    let key = (frame.generation, frame.spp.min(GUIDE_SAMPLES));
+    if let Some((k, g)) = &*ctx.guides_cache.lock().unwrap_or_else(|p| p.into_inner())
+        && *k == key
+    {
+        return Ok(g.clone());
+    }
+    let options = snell::render::RenderOptions {
+        threads: None,
+        progress: &|_| {},
+        cancel: None,
+        region: None,
+    };
+    let made =
+        Arc::new(snell::denoise::guides(scene, frame.spp, &options).map_err(|e| e.to_string())?);
+    *ctx.guides_cache.lock().unwrap_or_else(|p| p.into_inner()) = Some((key, made.clone()));
+    Ok(made)
 }

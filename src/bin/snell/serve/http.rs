@@ -54,6 +54,9 @@ type Encoded = Arc<Vec<u8>>;
 /// What a frame was encoded from: the frame, the exposure's bits and the curve.
 type FrameKey = (u64, u32, ToneCurve);
 
+/// Which guides: the render's generation and the first samples of its pixels they follow.
+pub(super) type GuidesKey = (u64, u32);
+
 /// What the handlers share.
 pub(crate) struct Context {
     pub shared: Arc<Shared>,
@@ -68,6 +71,8 @@ pub(crate) struct Context {
     view_cache: Mutex<Vec<((u64, Aov), Encoded)>>,
     /// The light path views of the render shown, linear, by generation and preset.
     pub(super) lpe_cache: Mutex<Vec<(LpeKey, Arc<snell::film::Image>)>>,
+    /// The denoiser's guides of the render shown, by generation and the samples they follow.
+    pub(super) guides_cache: Mutex<Option<(GuidesKey, Arc<snell::denoise::Guides>)>>,
 }
 
 impl Context {
@@ -79,6 +84,7 @@ impl Context {
             frame_cache: Mutex::new(None),
             view_cache: Mutex::new(vec![]),
             lpe_cache: Mutex::new(vec![]),
+            guides_cache: Mutex::new(None),
         }
     }
 }
