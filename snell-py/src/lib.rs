@@ -30,5 +30,6 @@ fn _snell(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(images::read, m)?)?;
     m.add_function(wrap_pyfunction!(images::encode_png, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
+    m.add("CAN_DENOISE", snell::denoise::AVAILABLE)?;
     Ok(())
 }

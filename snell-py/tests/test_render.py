@@ -1,5 +1,6 @@
 """Rendering from Python gives the command line's pixels, its errors and its files."""
 
+import os
 import threading
 
 import numpy as np
@@ -81,11 +82,34 @@ def test_adaptive_sampling_gives_the_command_lines_pixels_and_maps_its_samples(r
         snell.render(repo / "scenes/seed.toml", noise=0.05, width=8, height=8)
 
 
+# CI tests two wheels: the plain one, and one built with the `denoise` feature, for which
+# it sets SNELL_DENOISE=1; each build is checked to be the one meant, so that neither test
+# below passes by being skipped in the build that should run it.
+WANT_DENOISER = os.environ.get("SNELL_DENOISE") == "1"
+
+
+def test_the_module_says_whether_it_denoises():
+    assert snell.CAN_DENOISE is WANT_DENOISER
+
+
+@pytest.mark.skipif(WANT_DENOISER, reason="the wheel built with the denoiser")
 def test_denoise_in_a_build_without_the_feature_says_how_to_get_it(repo):
-    # The wheel CI builds has no denoiser: asked for one, it says how to build it, before
-    # rendering.
+    # Asked for a denoiser, a build without one says how to build it, before rendering.
     with pytest.raises(snell.SettingsError, match="pip install pyoidn"):
         snell.render(repo / "scenes/cornell.toml", denoise=True, width=8, height=8)
+
+
+@pytest.mark.skipif(not WANT_DENOISER, reason="the wheel built without the denoiser")
+def test_the_denoised_cornell_box_is_closer_to_its_reference(repo):
+    # As the command line's test (tests/integration/denoise.rs): 32 x 32, 16 samples a
+    # pixel, against the 65536-sample reference, in linear and in display values.
+    out = snell.render(repo / "scenes/cornell.toml", denoise=True, width=32, height=32, spp=16)
+    raw, denoised = out["image"], out["denoised"]
+    ref = snell.read(repo / "tests/data/cornell-32-ref.exr")
+    assert raw.shape == denoised.shape == ref.shape == (32, 32, 3)
+    for cut in (np.inf, 1.0):
+        rmse = lambda img: float(np.sqrt(np.mean((np.minimum(img, cut) - np.minimum(ref, cut)) ** 2)))  # noqa: E731
+        assert rmse(denoised) < 0.8 * rmse(raw), (cut, rmse(denoised), rmse(raw))
 
 
 def test_progress_is_reported_to_the_end_and_its_errors_stop_the_render(repo):

@@ -11,15 +11,17 @@
 A render's pixels are the command line's, bit for bit (`snell render -o x.exr` of the same
 scene and settings). Problems in a scene raise `snell.SceneError` with the command line's
 `file:line:col: message` lines; Ctrl-C stops a render and raises `snell.Interrupted`, which
-carries the picture as far as it got.
+carries the picture as far as it got. `snell.CAN_DENOISE` says whether this build has the
+denoiser (`render(..., denoise=True)`; the `denoise` feature, docs/denoise.md).
 """
 
-from ._snell import SceneError, SettingsError, __version__
+from ._snell import CAN_DENOISE, SceneError, SettingsError, __version__
 from .image import Image, read, write
 from .render import Interrupted, explain, render
 from .scene import Scene, load, load_dict, loads
 
 __all__ = [
+    "CAN_DENOISE",
     "Image",
     "Interrupted",
     "Scene",
