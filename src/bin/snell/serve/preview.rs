@@ -428,12 +428,17 @@ fn render(shared: &Shared) -> Result<(), String> {
         // Seconds one sample of one pixel takes, from the last pass.
         let (mut done, mut passes, mut per_pixel_sample) = (0u32, 0u32, None::<f64>);
         let noise = scene.settings.noise;
-        while done < target && !cancelled() {
-            // Adaptive sampling (`[image] noise`, `--noise`): once every pixel has its first
-            // samples, only the pixels still above the threshold take the pass's.
-            let going_on = noise
+        // Adaptive sampling (`[image] noise`, `--noise`): once every pixel has its first
+        // samples, only the pixels still above the threshold take a pass's. Which those are
+        // is worked out after each pass (to know whether any goes on) and kept for the next.
+        let decide = |film: &Film, done: u32| {
+            noise
                 .filter(|_| done >= FIRST_DECISION)
-                .map(|v| Convergence::of(&film, v, target, None));
+                .map(|v| Convergence::of(film, v, target, None))
+        };
+        let mut decided = None;
+        while done < target && !cancelled() {
+            let going_on = decided.take().or_else(|| decide(&film, done));
             let pixels = going_on
                 .as_ref()
                 .map_or(film.pixels().len() as u64, |c| c.active());
@@ -470,10 +475,8 @@ fn render(shared: &Shared) -> Result<(), String> {
             per_pixel_sample = Some(pass_start.elapsed().as_secs_f64() / added.max(1) as f64);
             (done, passes, rays) = (done + n, passes + 1, rays + stats.rays.total());
             // Done once no pixel goes on, in an adaptive render.
-            let finished = done == target
-                || going_on.is_some_and(|_| {
-                    Convergence::of(&film, noise.unwrap_or(1.0), target, None).active() == 0
-                });
+            decided = decide(&film, done);
+            let finished = done == target || decided.as_ref().is_some_and(|c| c.active() == 0);
             publish(
                 shared,
                 generation,
