@@ -99,6 +99,14 @@ impl LightTracer {
         {
             return;
         }
+        // A textured light's radiance where the point lies on it, over the mean its sample
+        // carries.
+        let textured = match (light, e.normal) {
+            (Light::Area(area), Some(n)) if area.texture.is_some() => {
+                scene.emission_from(area, e.origin, n) / area.radiance.max(Color::splat(1e-30))
+            }
+            _ => Color::ONE,
+        };
         // An area light seen by the eye: its point joined to the eye.
         if let (Light::Area(area), Some(n)) = (light, e.normal)
             && let Some(eye) =
@@ -106,7 +114,7 @@ impl LightTracer {
                     .connect(e.origin, sampler.next_2d(), view.size.0, view.size.1)
         {
             let cos = n.dot(eye.to_eye);
-            let le = area.emitted(n, eye.to_eye);
+            let le = area.emitted(n, eye.to_eye) * textured;
             if cos > 0.0 && le != Color::ZERO {
                 let shadow = Ray::new(offset_ray_origin(e.origin, n), eye.to_eye);
                 rays.shadow += 1;
@@ -121,7 +129,7 @@ impl LightTracer {
                 }
             }
         }
-        let mut beta = e.weight / p_light;
+        let mut beta = e.weight * textured / p_light;
         // A dispersive scene's path follows one wavelength from the first surface whose
         // index depends on it (see the path tracer).
         let mut wavelength =

@@ -186,7 +186,8 @@ impl Emit for AreaLight {
     /// A point uniform over the light's area and a cosine-weighted direction from it (on
     /// either side, half and half, for a two-sided light): the radiance times the cosine
     /// over both densities, `L pi / pdf_area` (twice that for two sides). A textured
-    /// light's radiance is its mean.
+    /// light's radiance is its mean: the caller reads the texture at the point
+    /// ([`crate::Scene::emission_from`]).
     fn sample_le(&self, u: Vec2, v: Vec2, _world: (Vec3A, f32)) -> Option<Emission> {
         let s = match &self.emitter {
             Emitter::Rect(e) => e.sample_area(u),

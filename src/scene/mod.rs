@@ -320,6 +320,16 @@ impl Scene {
             })
     }
 
+    /// The radiance area light `light` sends from its point `p` (unit normal `n`, the side
+    /// it leaves by): its constant radiance, or where a texture gives it, the texture read
+    /// there (the light's object met from just off the point). For paths that start on a
+    /// light (light tracing, bidirectional), whose sampled points carry the light's mean.
+    pub fn emission_from(&self, light: &crate::light::AreaLight, p: Vec3A, n: Vec3A) -> Color {
+        let origin = crate::math::offset_ray_origin(p, n);
+        let reach = (origin - p).length() * 4.0;
+        self.emission_at(light, origin, -n, reach)
+    }
+
     fn hit_details(&self, ray: &Ray, i: usize, h: ShapeHit, force_uv: bool) -> Hit {
         /// Out of line: few objects have a second uv set, and `hit_details` is inlined
         /// into every ray query, which this would otherwise keep the inliner from doing.

@@ -1,7 +1,8 @@
 //! Material parameters read from textures: every textured key gives, point by point, what the
 //! same constant gives (a uniform texture renders the same bits as the constant; a texture
 //! of two values renders each pixel as one of the two constants' renders), under both
-//! integrators; a textured light lights the scene as the emitting parts it stands for.
+//! integrators; a textured light lights the scene as the emitting parts it stands for, under
+//! the path tracer, light tracing and bidirectional path tracing.
 
 use snell::film::Image;
 use snell::integrator::{Integrator, Path as PathTracer, Whitted};
@@ -199,9 +200,10 @@ fn a_plastic_reads_a_textured_roughness_within_its_knots() {
 
 /// A rectangle light whose emission is stripes of 0 and 4 lights the floor as a rectangle
 /// of half its size with emission 4 does: the light is sampled where it lies and its
-/// radiance read there, not taken as the mean over all of it. Eight blocks of the floor
-/// seen from above agree within 4 %, where the mean taken for the whole light would be 25 %
-/// off near the dark half and the bright one.
+/// radiance read there, not taken as the mean over all of it, by the path tracer, and by
+/// the light tracer and bidirectional path tracing, whose paths start on it. Eight blocks
+/// of the floor seen from above agree within 4 %, where the mean taken for the whole light
+/// would be 25 % off near the dark half and the bright one.
 #[test]
 fn a_textured_light_lights_as_its_parts_do() {
     let floor = |lights: &str, textures: &str| {
@@ -237,20 +239,54 @@ fn a_textured_light_lights_as_its_parts_do() {
         }
         sums
     };
-    let (a, b) = (
-        blocks(&image(&textured, &PathTracer)),
-        blocks(&image(&half, &PathTracer)),
-    );
-    for i in 0..8 {
-        assert!(
-            (a[i] / b[i] - 1.0).abs() < 0.04,
-            "block {i}: textured {:.3}, half {:.3} (all {a:?} against {b:?})",
-            a[i],
-            b[i]
-        );
+    let load = |text: &str| {
+        load_str(text, Path::new("t.toml"), Path::new("."), Format::Toml)
+            .unwrap_or_else(|e| panic!("{e}\n{text}"))
+    };
+    let options = snell::render::RenderOptions {
+        threads: Some(2),
+        progress: &|_| {},
+        cancel: None,
+        region: None,
+    };
+    // Paths from the light reach the floor's far, dim blocks less often than the path
+    // tracer's reach the light: four times the paths.
+    let more = |text: &str| {
+        let mut scene = load(text);
+        scene.settings.spp *= 4;
+        scene
+    };
+    let light = |text: &str| {
+        snell::render::light::render_light(&more(text), &options)
+            .unwrap()
+            .image
+    };
+    let bdpt = |text: &str| {
+        snell::render::bdpt::render_bdpt(&more(text), &options)
+            .unwrap()
+            .image
+    };
+    let path = |text: &str| image(text, &PathTracer);
+    let mut checked = 0;
+    for (name, render) in [
+        ("path", &path as &dyn Fn(&str) -> Image),
+        ("light", &light),
+        ("bdpt", &bdpt),
+    ] {
+        let (a, b) = (blocks(&render(&textured)), blocks(&render(&half)));
+        for i in 0..8 {
+            assert!(
+                (a[i] / b[i] - 1.0).abs() < 0.04,
+                "{name}, block {i}: textured {:.3}, half {:.3} (all {a:?} against {b:?})",
+                a[i],
+                b[i]
+            );
+            checked += 1;
+        }
+        // The floor below the bright half is lit more than below the dark half.
+        assert!(b[6] > 1.5 * b[1], "{name}: {b:?}");
     }
-    // The floor below the bright half is lit more than below the dark half.
-    assert!(b[6] > 1.5 * b[1], "{b:?}");
+    assert_eq!(checked, 24);
 }
 
 /// A texture name that is not defined is an error at its key, with a suggestion.

@@ -130,7 +130,7 @@ fn from_light(ctx: &Context, pt: &Vertex, sampler: &mut Sampler, rays: &mut RayS
             };
             let to_light = (pt.point - a.point).normalize_or_zero();
             let radiance = if area.texture.is_some() {
-                ctx.emission_at(area, a.point, a.normal)
+                ctx.scene.emission_from(area, a.point, a.normal)
             } else {
                 area.emitted(a.normal, to_light)
             };

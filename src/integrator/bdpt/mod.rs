@@ -16,8 +16,7 @@ mod vertex;
 mod walk;
 
 use super::{LightView, RayStats};
-use crate::light::AreaLight;
-use crate::math::{Color, Ray, Vec3A, offset_ray_origin};
+use crate::math::{Color, Ray};
 use crate::sampler::Sampler;
 use crate::scene::{MisHeuristic, Scene};
 
@@ -34,15 +33,6 @@ pub(crate) struct Context<'a> {
     /// The sample's wavelength, in a scene that disperses light: both subpaths follow it
     /// wherever an index depends on it.
     nm: Option<f32>,
-}
-
-impl Context<'_> {
-    /// A textured area light's radiance at its point `p` (normal `n`).
-    fn emission_at(&self, area: &AreaLight, p: Vec3A, n: Vec3A) -> Color {
-        let origin = offset_ray_origin(p, n);
-        let reach = (origin - p).length() * 4.0;
-        self.scene.emission_at(area, origin, -n, reach)
-    }
 }
 
 /// The reusable memory of one thread's samples: the two subpaths.

@@ -69,7 +69,7 @@ pub(super) fn light_path(
         && area.texture.is_some()
     {
         // A textured light's radiance where the point lies on it.
-        let le = ctx.emission_at(area, e.origin, n);
+        let le = ctx.scene.emission_from(area, e.origin, n);
         emission *= le / area.radiance.max(Color::splat(1e-30));
     }
     let mut start = Vertex::new(kind, e.origin, e.normal.unwrap_or(Vec3A::ZERO), emission);
