@@ -17,7 +17,7 @@ threshold on every pixel promises to bound).
 
 The scenes: the Cornell box (scenes/cornell.toml); `env`, issue 44's environment scene (four
 balls of metal, glass, chalk and mirror on a disk under a generated sky with a 3-degree sun,
-320 x 180, written into WORKDIR by bench/vs-mitsuba-env.py's own functions); and the
+320 x 180, written into WORKDIR by bench/env_scene.py); and the
 courtyard (scenes/outdoor-noon.toml, a sky and a real-sized sun, whose caustics through glass
 are fireflies that rule every error measure).
 
@@ -43,10 +43,10 @@ How to run
 A manual benchmark, not run by CI.
 """
 import argparse
-import importlib.util
 import math
 import os
 import subprocess
+import sys
 import time
 
 import numpy as np
@@ -70,11 +70,10 @@ def read_exr(path, layer=None):
 
 
 def env_scene(workdir):
-    """Issue 44's environment scene (bench/vs-mitsuba-env.py's, with its generated sun and
-    sky), written into `workdir`; its path."""
-    spec = importlib.util.spec_from_file_location('vs_mitsuba_env', os.path.join(REPO, 'bench', 'vs-mitsuba-env.py'))
-    env = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(env)
+    """Issue 44's environment scene (bench/env_scene.py, with its generated sun and sky),
+    written into `workdir`; its path."""
+    sys.path.insert(0, os.path.join(REPO, 'bench'))
+    import env_scene as env
     sky = os.path.join(workdir, 'sun-sky.exr')
     if not os.path.exists(sky):
         env.sun_sky(sky)
@@ -82,6 +81,11 @@ def env_scene(workdir):
     with open(path, 'w') as f:
         f.write(env.snell_toml('sun-sky.exr', 0, 'sobol'))
     return path
+
+
+def has_layer(path, name):
+    with OpenEXR.File(path, separate_channels=True) as f:
+        return name in f.channels()
 
 
 def bounds(ref, variance, ref_spp, cap, noise_list):
@@ -152,7 +156,8 @@ def main():
         scene, w, h = SCENES[name]
         scene = scene or env_scene(a.workdir)
         ref_path = os.path.join(a.workdir, f'{name}-ref-{a.ref_spp}.exr')
-        if not os.path.exists(ref_path):
+        # A reference cached by an older version of this script has no variance view.
+        if not (os.path.exists(ref_path) and has_layer(ref_path, 'variance.Y')):
             print(f'{name}: reference at {a.ref_spp} spp ...', flush=True)
             render(a.snell, scene, w, h, ref_path, a.ref_spp, ['--seed', '1000', '--aov', 'variance'], a.threads)
         ref = read_exr(ref_path)

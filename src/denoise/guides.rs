@@ -9,9 +9,10 @@
 //!
 //! The light a pixel sees emitted (a lamp seen directly or in a mirror) is kept too: the
 //! denoiser leaves it out of what it filters, as the render sampled it, and adds it back
-//! sharp: where it changes within a pixel's 3 x 3 neighbourhood (a lamp's edge) taken again
-//! over [`EDGE_SAMPLES`] samples, which a few rays each (no shading) make cheap, so that the
-//! edge's place in its pixels is as exact as a converged render's instead of 16 samples'.
+//! sharp: where it changes within a pixel's 3 x 3 neighbourhood (a lamp's edge, or the sharp
+//! edges of a textured light's pattern) taken again over [`EDGE_SAMPLES`] samples, each a
+//! guide's ray (through mirrors and glass, no shading), so that the edge's place in its
+//! pixels is as exact as a converged render's instead of 16 samples'.
 //!
 //! Each ray goes on deterministically (glass by its refraction, unless that is total
 //! internal reflection), so the guides carry no noise of their own, only the pixels' edges:
@@ -50,7 +51,8 @@ pub struct Guides {
     /// pixel's samples disagree); zero where nothing is hit.
     pub normal: Vec<Vec3A>,
     /// The light the pixel's samples see emitted (directly, or through mirrors and glass),
-    /// linear RGB: the part of the picture that is not denoised (see [`super::denoise`]).
+    /// linear RGB, over the picture's own samples: the part of the picture that is not
+    /// denoised (see [`super::denoise`]). Zero for a picture of no samples.
     pub light: Vec<Color>,
     /// The same light, where it changes within the pixel's 3 x 3 neighbourhood taken over
     /// [`EDGE_SAMPLES`] samples (elsewhere `light`'s): what the denoiser adds back.
@@ -69,8 +71,9 @@ struct GuideSample {
 /// pixel has: a render stopped by its time limit, a preview's pass, has fewer than the
 /// scene asks), on `options.threads` (through the render loop every render takes, so its
 /// tiles, threads and cancellation are the picture's). The light seen emitted is taken over
-/// the same first samples as the picture's, so that the picture less that light is what it
-/// reflects.
+/// the picture's own first samples (up to [`EDGE_SAMPLES`] on an edge, [`GUIDE_SAMPLES`]
+/// elsewhere, where it changes too little to matter), so that the picture less that light
+/// is what it reflects.
 pub fn guides(scene: &Scene, samples: u32, options: &RenderOptions) -> Result<Guides, RenderError> {
     let s = &scene.settings;
     let (width, height) = (s.width, s.height);
@@ -105,27 +108,49 @@ pub fn guides(scene: &Scene, samples: u32, options: &RenderOptions) -> Result<Gu
     let work = |x: u32, y: u32, out: &mut GuideSample, _: &mut ()| *out = average(x, y, 0..n);
     crate::render::for_each_tile(&mut film, options, |_| false, work, |_, _| {})?;
     let rows = film.into_rows();
-    let light: Vec<Color> = rows.iter().map(|g| g.light).collect();
-    let edges = edges(&light, width, height);
-    let mut sharp: crate::film::Film<Color> = crate::film::Film::new(width, height);
+    let first: Vec<Color> = rows.iter().map(|g| g.light).collect();
+    let edges = edges(&first, width, height);
+    // On an edge, the light as the picture took it (its own first samples, up to
+    // EDGE_SAMPLES) and as EDGE_SAMPLES take it; elsewhere the first samples' for both. A
+    // picture of no samples has no light in it, and gets none added.
+    let mut lights: crate::film::Film<EdgeLight> = crate::film::Film::new(width, height);
     let index = |x: u32, y: u32| (y * width + x) as usize;
-    let work = |x: u32, y: u32, out: &mut Color, _: &mut ()| {
+    let work = |x: u32, y: u32, out: &mut EdgeLight, _: &mut ()| {
         let i = index(x, y);
-        *out = if edges[i] {
-            average(x, y, 0..EDGE_SAMPLES).light
+        *out = if samples == 0 {
+            EdgeLight::default()
+        } else if edges[i] {
+            let sharp = average(x, y, 0..EDGE_SAMPLES).light;
+            let taken = match samples {
+                s if s <= GUIDE_SAMPLES => first[i],
+                s if s >= EDGE_SAMPLES => sharp,
+                s => average(x, y, 0..s).light,
+            };
+            EdgeLight { taken, sharp }
         } else {
-            light[i]
+            EdgeLight {
+                taken: first[i],
+                sharp: first[i],
+            }
         };
     };
-    crate::render::for_each_tile(&mut sharp, options, |_| false, work, |_, _| {})?;
+    crate::render::for_each_tile(&mut lights, options, |_| false, work, |_, _| {})?;
+    let lights = lights.into_rows();
     Ok(Guides {
         width,
         height,
         albedo: rows.iter().map(|g| g.albedo).collect(),
         normal: rows.iter().map(|g| g.normal).collect(),
-        sharp_light: sharp.into_rows(),
-        light,
+        light: lights.iter().map(|l| l.taken).collect(),
+        sharp_light: lights.iter().map(|l| l.sharp).collect(),
     })
+}
+
+/// A pixel's light seen emitted: as its picture took it, and sharp.
+#[derive(Clone, Copy, Debug, Default, PartialEq, bytemuck::Zeroable)]
+struct EdgeLight {
+    taken: Color,
+    sharp: Color,
 }
 
 /// Which pixels of `light` (rows from the top) are on a light's edge: where the light in the
@@ -380,6 +405,35 @@ mod tests {
             checked += 1;
         }
         assert_eq!(checked, 96);
+        // The light taken out is the picture's own, over its first samples: a render of 16
+        // and of 64 samples (only the lamp gives light, so a pixel is the light it sees).
+        let mut compared = 0;
+        for (spp, light) in [
+            (16, &g.light),
+            (64, &guides(&scene, 64, &options()).unwrap().light),
+        ] {
+            let mut picture = scene.clone();
+            picture.settings.spp = spp;
+            let img = crate::render::render(&picture, &crate::integrator::Path, Some(2), &|_| {})
+                .unwrap()
+                .image;
+            for (p, l) in img.pixels.iter().zip(light) {
+                assert!(
+                    (*p - *l).abs().max_element() < 1e-4,
+                    "{spp} spp: {p:?} against {l:?}"
+                );
+                compared += 1;
+            }
+        }
+        assert_eq!(compared, 192);
+        // A picture of no samples has no light to take out or add back.
+        let none = guides(&scene, 0, &options()).unwrap();
+        assert!(
+            none.light
+                .iter()
+                .chain(&none.sharp_light)
+                .all(|l| *l == Color::ZERO)
+        );
         // The edge's column and its neighbours, all eight rows.
         assert!(edge >= 8, "{edge} pixels taken again");
         assert!(

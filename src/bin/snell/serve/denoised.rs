@@ -32,11 +32,8 @@ pub(crate) async fn picture(State(ctx): State<Arc<Context>>, q: Asked<ViewQuery>
         Ok(asked) => asked,
         Err(refused) => return *refused,
     };
-    let (scene, frame) = {
-        let s = ctx.shared.lock();
-        (s.scene.clone(), s.frame.clone())
-    };
-    let (Some(scene), Some(frame)) = (scene, frame) else {
+    let frame = ctx.shared.lock().frame.clone();
+    let Some(frame) = frame else {
         return error(StatusCode::NOT_FOUND, "no picture yet");
     };
     let tone = Tone {
@@ -44,7 +41,7 @@ pub(crate) async fn picture(State(ctx): State<Arc<Context>>, q: Asked<ViewQuery>
         curve: curve.unwrap_or(frame.tone.curve),
     };
     blocking(move || {
-        let denoised = guides(&ctx, &scene, &frame)
+        let denoised = guides(&ctx, &frame)
             .and_then(|g| snell::denoise::denoise(&frame.image, &g).map_err(|e| e.to_string()))
             .and_then(|img| {
                 snell::output::encode_display(&img, &tone, None).map_err(|e| e.to_string())
@@ -60,14 +57,10 @@ pub(crate) async fn picture(State(ctx): State<Arc<Context>>, q: Asked<ViewQuery>
     .await
 }
 
-/// The guides of `frame` (of `scene`): those kept, where they were made for its render and
-/// its first samples (guides follow at most [`GUIDE_SAMPLES`] of them), else made now and
-/// kept.
-fn guides(
-    ctx: &Context,
-    scene: &snell::scene::Scene,
-    frame: &Frame,
-) -> Result<Arc<snell::denoise::Guides>, String> {
+/// The guides of `frame` (from the scene it was rendered from): those kept, where they were
+/// made for its render and its first samples (guides follow at most [`GUIDE_SAMPLES`] of
+/// them), else made now and kept.
+fn guides(ctx: &Context, frame: &Frame) -> Result<Arc<snell::denoise::Guides>, String> {
     let key = (frame.generation, frame.spp.min(GUIDE_SAMPLES));
     if let Some((k, g)) = &*ctx.guides_cache.lock().unwrap_or_else(|p| p.into_inner())
         && *k == key
@@ -80,8 +73,9 @@ fn guides(
         cancel: None,
         region: None,
     };
-    let made =
-        Arc::new(snell::denoise::guides(scene, frame.spp, &options).map_err(|e| e.to_string())?);
+    let made = Arc::new(
+        snell::denoise::guides(&frame.scene, frame.spp, &options).map_err(|e| e.to_string())?,
+    );
     *ctx.guides_cache.lock().unwrap_or_else(|p| p.into_inner()) = Some((key, made.clone()));
     Ok(made)
 }

@@ -64,6 +64,8 @@ pub(crate) struct Frame {
     /// The path tracer's film of sums the picture was made from, for the views read from
     /// it (`variance`, `spp`); `None` for Whitted and bdpt.
     pub film: Option<Film>,
+    /// The scene the picture was rendered from (the state's may already be the next one's).
+    pub scene: Arc<Scene>,
 }
 
 /// Everything the handlers read and the loop and the watcher change.
@@ -413,6 +415,7 @@ fn render(shared: &Shared) -> Result<(), String> {
             let done = film.spp();
             publish(
                 shared,
+                &scene,
                 generation,
                 film.image(),
                 done,
@@ -479,6 +482,7 @@ fn render(shared: &Shared) -> Result<(), String> {
             let finished = done == target || decided.as_ref().is_some_and(|c| c.active() == 0);
             publish(
                 shared,
+                &scene,
                 generation,
                 film.image(),
                 done,
@@ -511,6 +515,7 @@ fn render(shared: &Shared) -> Result<(), String> {
             let last = spp == target;
             publish(
                 shared,
+                &scene,
                 generation,
                 film.image(),
                 spp,
@@ -529,6 +534,7 @@ fn render(shared: &Shared) -> Result<(), String> {
 #[allow(clippy::too_many_arguments)]
 fn publish(
     shared: &Shared,
+    scene: &Arc<Scene>,
     generation: u64,
     image: Image,
     spp: u32,
@@ -544,11 +550,7 @@ fn publish(
     }
     let elapsed = start.elapsed().as_secs_f64();
     s.frames += 1;
-    let tone = s
-        .scene
-        .as_ref()
-        .map(|sc| sc.settings.tone)
-        .unwrap_or_default();
+    let tone = scene.settings.tone;
     s.frame = Some(Arc::new(Frame {
         id: s.frames,
         generation,
@@ -560,6 +562,7 @@ fn publish(
         done,
         tone,
         film,
+        scene: scene.clone(),
     }));
     s.version += 1;
     shared.announce(s);
