@@ -82,8 +82,8 @@ def test_adaptive_sampling_gives_the_command_lines_pixels_and_maps_its_samples(r
         snell.render(repo / "scenes/seed.toml", noise=0.05, width=8, height=8)
 
 
-# CI tests two wheels: the plain one, and one built with the `denoise` feature, for which
-# it sets SNELL_DENOISE=1; each build is checked to be the one meant, so that neither test
+# A wheel built with the `denoise` feature is tested with SNELL_DENOISE=1 (docs/denoise.md;
+# CI tests the plain one): each build is checked to be the one meant, so that neither test
 # below passes by being skipped in the build that should run it.
 WANT_DENOISER = os.environ.get("SNELL_DENOISE") == "1"
 
