@@ -267,8 +267,12 @@ mod tests {
              [materials.lamp]\ntype = \"diffuse\"\ncolor = 0.8\nemission = [4, 2, 1]\n\
              {objects}"
         );
+        load(&text)
+    }
+
+    fn load(text: &str) -> Scene {
         load_str(
-            &text,
+            text,
             std::path::Path::new("t.toml"),
             std::path::Path::new("."),
             Format::Toml,
@@ -376,13 +380,7 @@ mod tests {
              [materials.black]\ntype = \"diffuse\"\ncolor = 0\nemission = [4, 2, 1]\n\
              [[objects]]\ntype = \"rectangle\"\ncorner = [-9, -9, 0]\nedge_u = [9.137, 0, 0]\n\
              edge_v = [0, 18, 0]\nmaterial = \"black\"\n";
-        let scene = load_str(
-            text,
-            std::path::Path::new("t.toml"),
-            std::path::Path::new("."),
-            Format::Toml,
-        )
-        .unwrap();
+        let scene = load(text);
         let g = guides(&scene, 16, &options()).unwrap();
         let mut converged = scene.clone();
         converged.settings.spp = 4096;

@@ -7,13 +7,18 @@
 use snell::film::Image;
 use snell::integrator::{Integrator, Path as PathTracer, Whitted};
 use snell::render::render;
-use snell::scene::{Format, load_str};
+use snell::scene::{Format, Scene, load_str};
 use std::path::Path;
 
+fn load(text: &str) -> Scene {
+    load_str(text, Path::new("t.toml"), Path::new("."), Format::Toml)
+        .unwrap_or_else(|e| panic!("{e}\n{text}"))
+}
+
 fn image(text: &str, integrator: &dyn Integrator) -> Image {
-    let scene = load_str(text, Path::new("t.toml"), Path::new("."), Format::Toml)
-        .unwrap_or_else(|e| panic!("{e}\n{text}"));
-    render(&scene, integrator, Some(2), &|_| {}).unwrap().image
+    render(&load(text), integrator, Some(2), &|_| {})
+        .unwrap()
+        .image
 }
 
 fn bits(img: &Image) -> Vec<[u32; 3]> {
@@ -238,10 +243,6 @@ fn a_textured_light_lights_as_its_parts_do() {
             }
         }
         sums
-    };
-    let load = |text: &str| {
-        load_str(text, Path::new("t.toml"), Path::new("."), Format::Toml)
-            .unwrap_or_else(|e| panic!("{e}\n{text}"))
     };
     let options = snell::render::RenderOptions {
         threads: Some(2),
