@@ -4,7 +4,7 @@
 
 use crate::math::differential::Differentials;
 use crate::math::sampling::uniform_disk_concentric;
-use crate::math::{Ray, Vec2, Vec3A};
+use crate::math::{Frustum, Ray, Vec2, Vec3A};
 
 /// How the film maps onto rays.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -349,6 +349,24 @@ impl RasterCamera {
             let dir = self.corner + self.per_x * x + self.per_y * y;
             Ray::new(self.origin, dir.normalize())
         }
+    }
+
+    /// The pyramid holding every ray through the film rectangle `[x0, x1] x [y0, y1]` (in
+    /// pixels), for a pinhole camera (`None` for a lens or parallel rays); `scale` is the
+    /// largest coordinate of what it will be tested against (see [`Frustum::through_film`]).
+    pub fn film_frustum(&self, rect: [f32; 4], scale: f32) -> Option<Frustum> {
+        if self.ortho || self.lens.is_some() {
+            return None;
+        }
+        let scale = scale.max(self.origin.abs().max_element());
+        Some(Frustum::through_film(
+            self.origin,
+            self.corner,
+            self.per_x,
+            self.per_y,
+            rect,
+            scale,
+        ))
     }
 
     /// Whether rays leave a lens (so each needs a point of it, [`RasterCamera::ray_lens`]).

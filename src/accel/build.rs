@@ -29,6 +29,10 @@ impl Bvh {
                 _ => bvh.unbounded.push(i as u32),
             }
         }
+        bvh.extent = items
+            .iter()
+            .map(|(_, b)| b.min.abs().max(b.max.abs()).max_element())
+            .fold(0.0, f32::max);
         if !items.is_empty() && items.len() <= FLAT {
             let mut flat = Flat {
                 node: WideNode::EMPTY,

@@ -7,7 +7,7 @@ pub(crate) mod wide;
 
 use crate::geometry::Object;
 use crate::geometry::{Shape, ShapeHit};
-use crate::math::{Aabb, LANES, Ray, RayLanes, Vec3A};
+use crate::math::{Aabb, Frustum, LANES, Ray, RayLanes, Vec3A};
 use glam::Vec4;
 use wide::{MESH_ROOT_FIRST, NodeRay, WideNode};
 
@@ -109,6 +109,8 @@ pub struct Bvh {
     root: Option<(u32, Aabb)>,
     /// Levels of four-wide nodes.
     depth: usize,
+    /// The largest coordinate, in size, of any bounded object's box.
+    extent: f32,
 }
 
 /// A ray with what the box tests need precomputed.
@@ -166,6 +168,66 @@ impl Bvh {
             + self.nodes.len() * std::mem::size_of::<Node4>()
             + self.leaves.len() * 8
             + (self.order.len() + self.unbounded.len() + self.flat_bit.len()) * 4
+    }
+
+    /// The largest coordinate, in size, of any bounded object's box (how much rounding a
+    /// test against the boxes must allow for).
+    pub fn extent(&self) -> f32 {
+        self.extent
+    }
+
+    /// Whether any object's bounds may meet the rays of `f`: false only where every one
+    /// lies wholly outside it. No unbounded object may be (an infinite plane is met almost
+    /// everywhere); a tree is looked at two levels down, below which any box still inside
+    /// counts as met (a pixel that sees nothing is mostly beside the whole scene).
+    /// A sphere in world space whose box `f` does not exclude is looked at itself (the
+    /// corners of a large sphere's box are much of a picture's background).
+    pub fn may_meet(&self, objects: &[Object], f: &Frustum) -> bool {
+        if !self.unbounded.is_empty() {
+            return true;
+        }
+        if let Some(flat) = &self.flat {
+            let mut met = flat.used & !f.excludes_8(flat.node.bounds());
+            while met != 0 {
+                let k = met.trailing_zeros() as usize;
+                met &= met - 1;
+                let o = &objects[flat.node.child[k] as usize];
+                match (&o.transform, &o.shape) {
+                    (None, Shape::Sphere(s)) if f.excludes_sphere(s.center, s.radius) => {}
+                    _ => return true,
+                }
+            }
+            return false;
+        }
+        let Some((root, bounds)) = self.root else {
+            return false;
+        };
+        if f.excludes(&bounds) {
+            return false;
+        }
+        // A bit per lane of `n` that holds a child whose box `f` does not exclude.
+        let lanes_met = |n: &Node4| {
+            (0..4).fold(0u32, |met, lane| {
+                let b = Aabb {
+                    min: Vec3A::new(n.min[0][lane], n.min[1][lane], n.min[2][lane]),
+                    max: Vec3A::new(n.max[0][lane], n.max[1][lane], n.max[2][lane]),
+                };
+                met | (((n.child[lane] != NO_CHILD && !f.excludes(&b)) as u32) << lane)
+            })
+        };
+        if root & LEAF != 0 {
+            return true;
+        }
+        let top = &self.nodes[root as usize];
+        let mut met = lanes_met(top);
+        while met != 0 {
+            let child = top.child[met.trailing_zeros() as usize];
+            met &= met - 1;
+            if child & LEAF != 0 || lanes_met(&self.nodes[child as usize]) != 0 {
+                return true;
+            }
+        }
+        false
     }
 
     /// Calls `visit(object, t_max)` for every object but `skip` whose bounds the ray may

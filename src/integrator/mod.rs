@@ -66,6 +66,16 @@ pub trait Integrator: Sync {
         }
     }
 
+    /// The colour of every camera ray that meets nothing, where it is one colour whatever
+    /// the ray's direction (`None` where it is not, or where the integrator does not say):
+    /// a pixel none of whose rays can meet anything then takes it for each sample without
+    /// tracing them ([`crate::render::PixelJob`]). The same colour, to the bit, as
+    /// [`Integrator::radiance_batch`] gives such a ray.
+    fn camera_miss(&self, scene: &Scene) -> Option<Color> {
+        let _ = scene;
+        None
+    }
+
     /// Whether each sample draws its random numbers from a [`Sampler`] (through
     /// [`Integrator::radiance_sampled`]): then a pixel's samples are placed by the sampler
     /// too, and any number of them is allowed. Whitted's are stratified jitter.

@@ -9,6 +9,7 @@ pub mod differential;
 pub mod distribution;
 pub mod distribution2d;
 mod frame;
+mod frustum;
 pub mod keyframes;
 mod offset;
 pub mod poly;
@@ -21,6 +22,7 @@ pub mod wavelength;
 
 pub use aabb::Aabb;
 pub use frame::Frame;
+pub use frustum::Frustum;
 pub use glam::{Vec2, Vec3, Vec3A};
 pub use offset::offset_ray_origin;
 pub use rng::{Rng, hash_seed};

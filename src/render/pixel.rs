@@ -58,6 +58,10 @@ impl PixelJob<'_> {
     ) {
         let (scene, integrator, camera) = (self.scene, self.integrator, self.camera);
         let s = &scene.settings;
+        if let Some(c) = self.sees_nothing(x, y) {
+            self.add_misses(x, y, c, pixel, rays);
+            return;
+        }
         let (mut sum, mut weight, mut unsigned, mut sum_sq) =
             (Color::ZERO, 0.0f32, Color::ZERO, 0.0f32);
         let mut colors = [Color::ZERO; CAMERA_BATCH];
@@ -116,6 +120,46 @@ impl PixelJob<'_> {
         });
         make(&film[..len], &mut batch[..len]);
         trace(&batch[..len], film[0].2, &signs[..len]);
+        pixel.add_sums(sum, weight, unsigned, sum_sq, s.spp);
+    }
+
+    /// The colour every sample of pixel `(x, y)` takes, where none of its camera rays can
+    /// meet anything (and the integrator gives such rays one colour): the pyramid of rays
+    /// through every film position the filter may put a sample at, widened by an eighth
+    /// of a pixel, lies wholly beside every object's bounds. A sky or a black backdrop
+    /// then costs a test of the pixel instead of a ray for each sample.
+    #[inline]
+    fn sees_nothing(&self, x: u32, y: u32) -> Option<Color> {
+        let c = self.integrator.camera_miss(self.scene)?;
+        let reach = self.scene.settings.filter.radius + 0.125;
+        let (cx, cy) = (x as f32 + 0.5, y as f32 + 0.5);
+        let rect = [cx - reach, cx + reach, cy - reach, cy + reach];
+        let f = self.camera.film_frustum(rect, self.scene.extent())?;
+        (c.is_finite() && !self.scene.may_meet(&f)).then_some(c)
+    }
+
+    /// Adds `c` for every sample of pixel `(x, y)`, in [`PixelJob::add_stratified`]'s
+    /// order and with its sums (the same bits as tracing each sample to `c`), and counts
+    /// the camera rays it stands for.
+    fn add_misses(&self, x: u32, y: u32, c: Color, pixel: &mut FilmPixel, rays: &mut RayStats) {
+        let s = &self.scene.settings;
+        let l = crate::math::luminance(c);
+        let (mut sum, mut weight, mut unsigned, mut sum_sq) =
+            (Color::ZERO, 0.0f32, Color::ZERO, 0.0f32);
+        let mut add = |sign: f32| {
+            sum += c * sign;
+            weight += sign;
+            unsigned += c;
+            sum_sq += l * l;
+        };
+        if s.filter.has_negative_lobes() {
+            for_each_sample(s, x, y, |_, _, sign| add(sign));
+        } else {
+            // Every sign is +1: where the samples go does not matter.
+            (0..s.spp).for_each(|_| add(1.0));
+        }
+        rays.camera += s.spp as u64;
+        rays.deepest = rays.deepest.max(1);
         pixel.add_sums(sum, weight, unsigned, sum_sq, s.spp);
     }
 
@@ -336,6 +380,99 @@ mod tests {
                 "pixel ({x}, {y})"
             );
         }
+    }
+
+    /// A pixel none of whose rays can meet anything takes the background for each sample
+    /// without tracing: only where every ray through the filter's reach misses (checked by
+    /// tracing a grid of them), and with the sums, to the bit, that tracing each sample
+    /// gives, for every filter, with fog and without, and counting the same rays.
+    #[test]
+    fn pixels_that_see_nothing_are_the_background_without_tracing() {
+        let mut skipped = 0;
+        let mut traced = 0;
+        for (filter, fog) in [
+            ("gaussian", ""),
+            ("mitchell", ""),
+            (
+                "box",
+                "\n[fog]\nmode = \"exponential\"\ncolor = [0.5, 0.6, 0.7]\ndensity = 0.02",
+            ),
+        ] {
+            let text = format!(
+                "[image]\nwidth = 24\nheight = 16\nsamples = 9\nfilter = {{ type = \"{filter}\" }}\n\
+                 background = [0.2, 0.1, 0.3]\n\
+                 [camera]\nposition = [0, 0, 5]\nlook_at = [0, 0, 0]\nfov = 40\n\
+                 [materials.m]\ncolor = [0.8, 0.3, 0.1]\n\
+                 [[lights]]\ntype = \"point\"\nposition = [2, 3, 4]\n\
+                 [[objects]]\ntype = \"sphere\"\nradius = 0.6\nmaterial = \"m\"\n\
+                 [[objects]]\ntype = \"box\"\nmin = [1.0, 0.5, -1]\nmax = [1.4, 0.9, 0]\nmaterial = \"m\"{fog}\n"
+            );
+            let scene = load_str(&text, Path::new("t.toml"), Path::new("."), Format::Toml).unwrap();
+            let camera = scene.camera.raster(24, 16);
+            let job = PixelJob {
+                scene: &scene,
+                integrator: &Whitted,
+                camera: &camera,
+            };
+            for y in 0..16 {
+                for x in 0..24 {
+                    let shortcut = job.sees_nothing(x, y);
+                    if shortcut.is_some() {
+                        skipped += 1;
+                        // A 9 x 9 grid of rays over the filter's reach: none meets anything.
+                        let r = scene.settings.filter.radius;
+                        for j in 0..9 {
+                            for i in 0..9 {
+                                let px = x as f32 + 0.5 - r + 2.0 * r * i as f32 / 8.0;
+                                let py = y as f32 + 0.5 - r + 2.0 * r * j as f32 / 8.0;
+                                let ray = camera.ray(px, py);
+                                assert!(scene.closest_hit(&ray, f32::INFINITY).is_none());
+                            }
+                        }
+                    } else {
+                        traced += 1;
+                    }
+                    let mut pixel = FilmPixel::default();
+                    let mut rays = RayStats::default();
+                    job.add_stratified(x, y, &mut pixel, &mut rays, &mut BadSamples::default());
+                    // Each sample traced on its own, summed as the film sums them.
+                    let mut want = FilmPixel::default();
+                    let mut want_rays = RayStats::default();
+                    let (mut sum, mut weight, mut unsigned, mut sum_sq) =
+                        (Color::ZERO, 0.0f32, Color::ZERO, 0.0f32);
+                    for_each_sample(&scene.settings, x, y, |px, py, sign| {
+                        let c = Whitted.radiance(&scene, &camera.ray(px, py), &mut want_rays);
+                        sum += c * sign;
+                        weight += sign;
+                        unsigned += c;
+                        let l = crate::math::luminance(c);
+                        sum_sq += l * l;
+                    });
+                    want.add_sums(sum, weight, unsigned, sum_sq, 9);
+                    let bits = |p: &FilmPixel| {
+                        format!("{:?}", (p.sum, p.weight, p.unsigned, p.sum_sq, p.samples))
+                    };
+                    assert_eq!(bits(&pixel), bits(&want), "{filter} ({x}, {y})");
+                    assert_eq!(rays.camera, 9);
+                    if shortcut.is_some() {
+                        assert_eq!(
+                            rays,
+                            RayStats {
+                                camera: 9,
+                                deepest: 1,
+                                ..Default::default()
+                            }
+                        );
+                    }
+                }
+            }
+        }
+        // Both kinds of pixel, in every scene.
+        assert_eq!(skipped + traced, 3 * 24 * 16);
+        assert!(
+            skipped > 3 * 100 && traced > 3 * 20,
+            "{skipped} skipped, {traced} traced"
+        );
     }
 
     /// The sampler's shortcuts (a multiplication for a power-of-two stratum count, no clamp,

@@ -222,6 +222,17 @@ impl Scene {
         }
     }
 
+    /// Whether any object may be met by a ray of `f` (false only where none can be).
+    #[inline]
+    pub fn may_meet(&self, f: &crate::math::Frustum) -> bool {
+        self.accel.may_meet(&self.objects, f)
+    }
+
+    /// The largest coordinate, in size, of any bounded object's box.
+    pub fn extent(&self) -> f32 {
+        self.accel.extent()
+    }
+
     /// Whether some material's index changes with wavelength: the physical integrators then
     /// draw a wavelength for every sample (and paths that meet such a material follow it),
     /// and scenes without one draw none and pay nothing.

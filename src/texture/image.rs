@@ -358,47 +358,56 @@ fn bilinear(
     top.lerp(bottom, fy)
 }
 
-/// The even steps of `[0, 1]` at which [`NearestByte`] knows where a value goes.
+/// The even steps of `[0, 1]` at which [`NearestByte`] knows the nearest byte.
 const STEPS: usize = 4096;
 
 /// The byte whose entry in a rising table of 256 linear values is nearest a value (the lower
-/// on a tie), found from a guess instead of a binary search: where the value would go in
-/// the table is first looked up among [`STEPS`] even steps of `[0, 1]`, then walked to (a
-/// step or two: sRGB's entries, the closest of any table, are at least 1 / 3300 apart).
+/// on a tie), from a table instead of a search: the nearest byte at each of [`STEPS`] even
+/// steps of `[0, 1]`, and one comparison to say whether the value has passed the boundary
+/// to the next byte. A step holds at most one boundary: sRGB's entries, the closest of any
+/// table, are at least 1 / 3300 apart, and so are the boundaries halfway between them.
 struct NearestByte<'a> {
     linear: &'a [f32; 256],
-    /// For each step `k`, where `k / STEPS` would go in the table.
-    start: Box<[u16; STEPS + 1]>,
+    /// For each step `k`, the nearest byte to `k / STEPS`.
+    byte: Box<[u8; STEPS + 1]>,
 }
 
 impl<'a> NearestByte<'a> {
     fn new(linear: &'a [f32; 256]) -> Self {
-        let mut start = Box::new([0u16; STEPS + 1]);
-        for (k, s) in start.iter_mut().enumerate() {
-            *s = linear.partition_point(|&v| v < k as f32 / STEPS as f32) as u16;
+        let mut byte = Box::new([0u8; STEPS + 1]);
+        for (k, b) in byte.iter_mut().enumerate() {
+            *b = nearest_by_search(linear, k as f32 / STEPS as f32);
         }
-        NearestByte { linear, start }
+        NearestByte { linear, byte }
     }
 
-    /// The nearest entry's byte: `linear.partition_point(|&v| v < x)` (clamped to 255) and
-    /// the entry before it, whichever is nearer.
+    /// The nearest entry's byte, as [`nearest_by_search`] finds it: the nearest byte only
+    /// grows with the value, so a value in step `k` has the step's byte or the next, and
+    /// the next where it is nearer that byte's entry (the search's own comparison).
     #[inline]
     fn of(&self, x: f32) -> u8 {
         let t = self.linear;
+        // Multiplying by a power of two is exact: `k / STEPS <= x`. NaN goes to step 0.
         let k = (x * STEPS as f32).clamp(0.0, STEPS as f32) as usize;
-        let mut i = self.start[k] as usize;
-        while i > 0 && t[i - 1] >= x {
-            i -= 1;
-        }
-        while i < 256 && t[i] < x {
-            i += 1;
-        }
-        let i = i.min(255);
-        if i > 0 && (x - t[i - 1]) <= (t[i] - x) {
-            (i - 1) as u8
+        let b = self.byte[k];
+        let i = b as usize;
+        if i < 255 && (x - t[i]) > (t[i + 1] - x) {
+            b + 1
         } else {
-            i as u8
+            b
         }
+    }
+}
+
+/// The byte whose entry in `linear` is nearest `x`, the lower on a tie:
+/// `linear.partition_point(|&v| v < x)` (clamped to 255) and the entry before it, whichever
+/// is nearer.
+fn nearest_by_search(linear: &[f32; 256], x: f32) -> u8 {
+    let i = linear.partition_point(|&v| v < x).min(255);
+    if i > 0 && (x - linear[i - 1]) <= (linear[i] - x) {
+        (i - 1) as u8
+    } else {
+        i as u8
     }
 }
 
@@ -482,14 +491,7 @@ mod tests {
         let linear: [f32; 256] = std::array::from_fn(|i| i as f32 / 255.0);
         let mut checked = 0;
         for table in [&srgb, &linear] {
-            let slow = |x: f32| {
-                let i = table.partition_point(|&v| v < x).min(255);
-                if i > 0 && (x - table[i - 1]) <= (table[i] - x) {
-                    (i - 1) as u8
-                } else {
-                    i as u8
-                }
-            };
+            let slow = |x: f32| nearest_by_search(table, x);
             let fast = NearestByte::new(table);
             let mut values = vec![-1.0f32, 0.0, 1.0, 2.0, f32::NAN, f32::INFINITY];
             for i in 0..256 {
@@ -500,12 +502,17 @@ mod tests {
                 }
             }
             values.extend((0..=100_000).map(|k| k as f32 / 100_000.0));
+            // Each step's start and the floats either side of it.
+            for k in 0..=STEPS {
+                let x = k as f32 / STEPS as f32;
+                values.extend([x.next_down(), x, x.next_up()]);
+            }
             for x in values {
                 assert_eq!(fast.of(x), slow(x), "x = {x}");
                 checked += 1;
             }
         }
-        assert_eq!(checked, 2 * (6 + 256 + 2 * 255 + 100_001));
+        assert_eq!(checked, 2 * (6 + 256 + 2 * 255 + 100_001 + 3 * (STEPS + 1)));
     }
 
     #[test]

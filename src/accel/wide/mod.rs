@@ -47,6 +47,11 @@ impl WideNode {
         child: [0; 8],
     };
 
+    /// The children's boxes: per axis, their smallest coordinates, then their largest.
+    pub(crate) fn bounds(&self) -> &[[[f32; 8]; 2]; 3] {
+        &self.planes
+    }
+
     /// Puts `child`, with bounds `b`, in slot `i`.
     pub(crate) fn set_child(&mut self, i: usize, b: &Aabb, child: u32) {
         for (axis, [lo, hi]) in self.planes.iter_mut().enumerate() {

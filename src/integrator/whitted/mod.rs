@@ -29,6 +29,17 @@ impl Integrator for Whitted {
         self.trace(scene, ray, 1, None, rays)
     }
 
+    /// A camera ray that meets nothing sees the background (through the fog, if any),
+    /// unless the scene shows an environment, which changes with direction: as
+    /// [`Whitted::trace_found`] colours such a ray.
+    fn camera_miss(&self, scene: &Scene) -> Option<Color> {
+        match (scene.fog, scene.environment()) {
+            (Some(fog), _) => Some(fog.apply(scene.background, f32::INFINITY)),
+            (None, Some(env)) if env.visible => None,
+            _ => Some(scene.background),
+        }
+    }
+
     /// The first hits of the whole batch as packets ([`Scene::closest_hits`]), then each
     /// ray's shading and the rest of its tree, in order. In a scene with dispersive glass,
     /// sample `k` of a pixel follows the wavelength of `k` in a sequence spread evenly over
@@ -588,7 +599,19 @@ fn phong_lobe(cos: f32, shininess: f32) -> f32 {
         if shininess >= 32.0 && c < 0.5 {
             return 0.0;
         }
-        c.powi(shininess as i32)
+        // `powi`'s own squarings, in its order (the same bits), inline: a variable exponent
+        // made `powi` a call into the runtime library.
+        let (mut base, mut e, mut product) = (c, shininess as u32, 1.0f32);
+        loop {
+            if e & 1 != 0 {
+                product *= base;
+            }
+            e >>= 1;
+            if e == 0 {
+                return product;
+            }
+            base *= base;
+        }
     } else {
         c.powf(shininess)
     }
@@ -651,5 +674,19 @@ mod tests {
             }
             assert_eq!(phong_lobe(-0.5, shininess), 0.0f32.powf(shininess));
         }
+        // The whole exponents' squarings are `powi`'s, to the bit.
+        let mut checked = 0;
+        for e in 0..=256u32 {
+            for k in 500..=1000 {
+                let c = k as f32 / 1000.0;
+                assert_eq!(
+                    phong_lobe(c, e as f32).to_bits(),
+                    c.powi(e as i32).to_bits(),
+                    "{c}^{e}"
+                );
+                checked += 1;
+            }
+        }
+        assert_eq!(checked, 257 * 501);
     }
 }

@@ -1,0 +1,166 @@
+//! A pyramid of rays from one point: every ray a pinhole camera sends through a rectangle of
+//! its film lies in it, so a box wholly outside it is met by none of them. A pixel whose
+//! pyramid meets no object's box sees only the background, for every sample it could take.
+
+use super::{Aabb, Vec3A};
+
+/// The rays from `eye` on the inner side of four planes through it (a convex pyramid with its
+/// apex at the eye, open on the far side).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Frustum {
+    /// The apex.
+    pub eye: Vec3A,
+    /// The planes' normals, pointing in: a point `p` is inside where `n . (p - eye) >= 0`
+    /// for all four.
+    pub normals: [Vec3A; 4],
+    /// Per plane, how far below zero `n . p - n . eye` must be for a point to count as
+    /// outside: `n . eye` less a slack for the rounding of those products.
+    pub limits: [f32; 4],
+}
+
+impl Frustum {
+    /// The pyramid of rays from `eye` whose directions are `corner + per_x * x + per_y * y`
+    /// for `x` in `[x0, x1]` and `y` in `[y0, y1]`: a pinhole camera's rays through that
+    /// rectangle of its film (`corner` the direction through the film's origin, `per_x`
+    /// and `per_y` its change per pixel). `scale` is the largest coordinate (in size) of
+    /// anything tested against it, for the slack.
+    pub fn through_film(
+        eye: Vec3A,
+        corner: Vec3A,
+        per_x: Vec3A,
+        per_y: Vec3A,
+        [x0, x1, y0, y1]: [f32; 4],
+        scale: f32,
+    ) -> Self {
+        // The plane through the eye holding the film's column at `x` holds the directions
+        // `corner + per_x x` and `per_y`: its normal is their cross product, affine in `x`.
+        // Moving along `per_x` goes in on the left plane and out on the right one.
+        let (column, column_step) = (corner.cross(per_y), per_x.cross(per_y));
+        let (row, row_step) = (corner.cross(per_x), per_y.cross(per_x));
+        let sx = column.dot(per_x).signum();
+        let sy = row.dot(per_y).signum();
+        let normals = [
+            (column + column_step * x0) * sx,
+            (column + column_step * x1) * -sx,
+            (row + row_step * y0) * sy,
+            (row + row_step * y1) * -sy,
+        ];
+        // A product `n . p` of numbers up to `scale` in size is off by at most a few ulps of
+        // `|n|_1 scale`; a point must be further out than many times that to count.
+        let limits = normals.map(|n| n.dot(eye) - n.abs().element_sum() * scale * 1e-5);
+        Frustum {
+            eye,
+            normals,
+            limits,
+        }
+    }
+
+    /// Whether `b` lies wholly outside (beyond one plane: a box that only misses the
+    /// pyramid past a corner counts as meeting it, which is safe).
+    #[inline]
+    pub fn excludes(&self, b: &Aabb) -> bool {
+        self.normals.iter().zip(self.limits).any(|(n, limit)| {
+            // The box's corner furthest along `n`.
+            let far = Vec3A::select(n.cmpgt(Vec3A::ZERO), b.max, b.min);
+            n.dot(far) < limit
+        })
+    }
+
+    /// Whether the ball of `radius` around `center` lies wholly outside (beyond one plane).
+    #[inline]
+    pub fn excludes_sphere(&self, center: Vec3A, radius: f32) -> bool {
+        self.normals
+            .iter()
+            .zip(self.limits)
+            .any(|(n, limit)| n.dot(center) + radius * n.length() < limit)
+    }
+
+    /// A bit per box of `boxes` (eight boxes' bounds side by side: per axis, the smallest
+    /// coordinates, then the largest) that lies wholly outside, as [`Frustum::excludes`]
+    /// says of each.
+    #[inline]
+    pub fn excludes_8(&self, boxes: &[[[f32; 8]; 2]; 3]) -> u32 {
+        let mut outside = 0u32;
+        for (n, limit) in self.normals.iter().zip(self.limits) {
+            let mut along = [0.0f32; 8];
+            for (axis, sides) in boxes.iter().enumerate() {
+                let c = n[axis];
+                let far = &sides[(c > 0.0) as usize];
+                for (a, &f) in along.iter_mut().zip(far) {
+                    *a += c * f;
+                }
+            }
+            for (lane, a) in along.iter().enumerate() {
+                outside |= ((*a < limit) as u32) << lane;
+            }
+        }
+        outside
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::math::Rng;
+
+    /// A camera at `eye` looking down -z, 1 unit to the film, pixels 0.01 apart.
+    fn film(eye: Vec3A) -> (Vec3A, Vec3A, Vec3A, Vec3A) {
+        let (per_x, per_y) = (Vec3A::X * 0.01, Vec3A::NEG_Y * 0.01);
+        (eye, Vec3A::new(-0.5, 0.5, -1.0), per_x, per_y)
+    }
+
+    /// Boxes around points on rays through the rectangle are never excluded; boxes beside
+    /// it, behind the eye or past a side, are; eight at once say what each says alone.
+    #[test]
+    fn boxes_met_by_the_rays_are_never_excluded() {
+        let mut rng = Rng::new(7);
+        let (mut inside, mut outside) = (0, 0);
+        for round in 0..2000 {
+            let eye = Vec3A::new(rng.next_f32(), rng.next_f32(), rng.next_f32()) * 20.0 - 10.0;
+            let (eye, corner, per_x, per_y) = film(eye);
+            let (x0, y0) = (rng.next_f32() * 90.0, rng.next_f32() * 90.0);
+            let rect = [x0, x0 + 3.0, y0, y0 + 3.0];
+            let f = Frustum::through_film(eye, corner, per_x, per_y, rect, 100.0);
+            // A ray through the rectangle (edges included) and a point along it.
+            let (x, y) = (x0 + 3.0 * rng.next_f32(), y0 + 3.0 * rng.next_f32());
+            let (x, y) = match round % 5 {
+                0 => (x0, y),
+                1 => (x0 + 3.0, y),
+                _ => (x, y),
+            };
+            let dir = (corner + per_x * x + per_y * y).normalize();
+            let p = eye + dir * (0.01 + 50.0 * rng.next_f32());
+            let size = 0.001 + rng.next_f32();
+            let met = Aabb {
+                min: p - Vec3A::splat(rng.next_f32() * size),
+                max: p + Vec3A::splat(rng.next_f32() * size),
+            };
+            assert!(!f.excludes(&met), "{f:?} {met:?}");
+            assert!(!f.excludes_sphere(p, size), "{f:?} {p} {size}");
+            inside += 1;
+            // A box well to the side of the rectangle, and one behind the eye.
+            let beside = (corner + per_x * (x0 - 10.0) + per_y * y).normalize();
+            let q = eye + beside * 30.0;
+            let behind = eye - dir * 5.0;
+            for c in [q, behind] {
+                let b = Aabb {
+                    min: c - Vec3A::splat(0.01),
+                    max: c + Vec3A::splat(0.01),
+                };
+                assert!(f.excludes(&b), "{f:?} {b:?}");
+                assert!(f.excludes_sphere(c, 0.01), "{f:?} {c}");
+                outside += 1;
+            }
+            // The same boxes eight at a time (the rest empty: inverted).
+            let mut boxes = [[[f32::INFINITY; 8], [f32::NEG_INFINITY; 8]]; 3];
+            for (lane, b) in [met, Aabb::EMPTY].iter().enumerate() {
+                for (axis, [lo, hi]) in boxes.iter_mut().enumerate() {
+                    lo[lane] = b.min[axis];
+                    hi[lane] = b.max[axis];
+                }
+            }
+            assert_eq!(f.excludes_8(&boxes) & 1, 0);
+        }
+        assert_eq!((inside, outside), (2000, 4000));
+    }
+}
