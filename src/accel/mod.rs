@@ -91,6 +91,36 @@ impl Skip {
     }
 }
 
+/// Which objects a group of rays may meet, as far as a test of their pyramid against the
+/// objects' bounds can tell: a bit per slot of a small scene's flat layout, or everything.
+/// Objects left out are met by none of the rays, so a query among the rest finds the same
+/// hits.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Reach(u32);
+
+impl Reach {
+    /// Any object (what is not known).
+    pub const ALL: Reach = Reach(u32::MAX);
+    /// None: the rays meet nothing.
+    pub const NONE: Reach = Reach(0);
+
+    /// Whether the rays meet nothing.
+    pub fn is_none(self) -> bool {
+        self.0 == 0
+    }
+
+    /// How many objects the rays may meet (32 for [`Reach::ALL`]).
+    pub fn count(self) -> u32 {
+        self.0.count_ones()
+    }
+}
+
+impl Default for Reach {
+    fn default() -> Self {
+        Reach::ALL
+    }
+}
+
 /// The objects of a scene, arranged for fast ray queries.
 #[derive(Clone, Debug, Default)]
 pub struct Bvh {
@@ -176,29 +206,41 @@ impl Bvh {
         self.extent
     }
 
-    /// Whether any object's bounds may meet the rays of `f`: false only where every one
-    /// lies wholly outside it. No unbounded object may be (an infinite plane is met almost
-    /// everywhere); a tree is looked at two levels down, below which any box still inside
-    /// counts as met (a pixel that sees nothing is mostly beside the whole scene).
-    /// A sphere in world space whose box `f` does not exclude is looked at itself (the
-    /// corners of a large sphere's box are much of a picture's background).
-    pub fn may_meet(&self, objects: &[Object], f: &Frustum) -> bool {
+    /// Which objects' bounds may meet the rays of `f` ([`Reach::NONE`] only where every
+    /// one lies wholly outside it). No unbounded object may be (an infinite plane is met
+    /// almost everywhere); a tree is looked at two levels down, below which any box still
+    /// inside counts as met (a pixel that sees nothing is mostly beside the whole scene),
+    /// and says all or none. A sphere in world space whose box `f` does not exclude is
+    /// looked at itself (the corners of a large sphere's box are much of a picture's
+    /// background).
+    pub fn reach(&self, objects: &[Object], f: &Frustum) -> Reach {
         if !self.unbounded.is_empty() {
-            return true;
+            return Reach::ALL;
         }
         if let Some(flat) = &self.flat {
             let mut met = flat.used & !f.excludes_8(flat.node.bounds());
-            while met != 0 {
-                let k = met.trailing_zeros() as usize;
-                met &= met - 1;
+            let mut left = met;
+            while left != 0 {
+                let k = left.trailing_zeros() as usize;
+                left &= left - 1;
                 let o = &objects[flat.node.child[k] as usize];
-                match (&o.transform, &o.shape) {
-                    (None, Shape::Sphere(s)) if f.excludes_sphere(s.center, s.radius) => {}
-                    _ => return true,
+                if let (None, Shape::Sphere(s)) = (&o.transform, &o.shape)
+                    && f.excludes_sphere(s.center, s.radius)
+                {
+                    met &= !(1 << k);
                 }
             }
-            return false;
+            return Reach(met);
         }
+        if self.tree_meets(f) {
+            Reach::ALL
+        } else {
+            Reach::NONE
+        }
+    }
+
+    /// Whether the tree's boxes may meet the rays of `f`, two levels down.
+    fn tree_meets(&self, f: &Frustum) -> bool {
         let Some((root, bounds)) = self.root else {
             return false;
         };
@@ -401,12 +443,17 @@ impl Bvh {
     /// Always inlined into the scene's batch query: the inliner left it out of line once
     /// that query grew, and the call, paid on every batch of camera rays, made renders
     /// slower (docs/perf-log.md).
+    ///
+    /// `reach` says which objects the rays may meet at all (see [`Bvh::reach`]): the others
+    /// are not tested, and where that leaves one sphere or rectangle (a pixel that sees only
+    /// the floor), the packet is tested against it alone, without the boxes.
     #[inline(always)]
     pub fn closest_hits(
         &self,
         objects: &[Object],
         rays: &[Ray],
         out: &mut [Option<(usize, ShapeHit)>],
+        reach: Reach,
     ) {
         assert!(rays.len() <= LANES && out.len() == rays.len());
         let flat = match &self.flat {
@@ -419,6 +466,32 @@ impl Bvh {
                 return;
             }
         };
+        let used = flat.used & reach.0;
+        if used.count_ones() == 1 && self.unbounded.is_empty() {
+            let i = flat.node.child[used.trailing_zeros() as usize] as usize;
+            let packet = RayLanes::new(rays);
+            const NO_LIMIT: [f32; LANES] = [f32::INFINITY; LANES];
+            let ts = match (&objects[i].transform, &objects[i].shape) {
+                (None, Shape::Sphere(s)) => Some(s.intersect_lanes(&packet, &NO_LIMIT)),
+                (None, Shape::Rect(r)) => Some(r.intersect_lanes(&packet, &NO_LIMIT)),
+                _ => None,
+            };
+            if let Some(ts) = ts {
+                for (o, &t) in out.iter_mut().zip(&ts) {
+                    // (An infinite distance is a packet test's miss.)
+                    *o = (t != f32::INFINITY).then_some((
+                        i,
+                        ShapeHit {
+                            t,
+                            part: 0,
+                            prim: 0,
+                            bary: glam::Vec2::ZERO,
+                        },
+                    ));
+                }
+                return;
+            }
+        }
         // Each lane's nearest hit so far, as the walk finds it: unbounded objects first.
         let mut limit = [f32::INFINITY; LANES];
         for (l, ray) in rays.iter().enumerate() {
@@ -437,7 +510,7 @@ impl Bvh {
         for (l, ray) in rays.iter().enumerate() {
             let (near, mask) = NodeRay::new(ray).hits(&flat.node, limit[l]);
             nears[l] = near;
-            let mut m = mask & flat.used;
+            let mut m = mask & used;
             while m != 0 {
                 lanes_of[m.trailing_zeros() as usize] |= 1 << l;
                 m &= m - 1;

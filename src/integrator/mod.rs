@@ -16,7 +16,7 @@ pub use whitted::Whitted;
 
 use crate::math::{Color, Ray};
 use crate::sampler::Sampler;
-use crate::scene::{IntegratorKind, Scene};
+use crate::scene::{IntegratorKind, Reach, Scene};
 
 /// The integrator a scene's settings choose. Light tracing and bidirectional path tracing
 /// have no integrator of camera rays alone (their renders go through `render::light` and
@@ -40,6 +40,8 @@ pub struct BatchStart {
     pub y: u32,
     /// The first ray's sample index in the pixel.
     pub index: u32,
+    /// Which objects the batch's rays may meet ([`Reach::ALL`] where that is not known).
+    pub reach: Reach,
 }
 
 /// Computes the colour seen along a camera ray.

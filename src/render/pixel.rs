@@ -9,7 +9,7 @@ use crate::film::FilmPixel;
 use crate::integrator::{Integrator, RayStats};
 use crate::math::{Color, Ray, Rng, Vec2, Vec3A, hash_seed};
 use crate::sampler::Sampler;
-use crate::scene::{RenderSettings, Scene};
+use crate::scene::{Reach, RenderSettings, Scene};
 use std::ops::Range;
 
 /// What stays the same for every pixel of a render: the scene, its integrator, and the
@@ -58,7 +58,11 @@ impl PixelJob<'_> {
     ) {
         let (scene, integrator, camera) = (self.scene, self.integrator, self.camera);
         let s = &scene.settings;
-        if let Some(c) = self.sees_nothing(x, y) {
+        let reach = self.reach(x, y);
+        if reach.is_none()
+            && let Some(c) = integrator.camera_miss(scene)
+            && c.is_finite()
+        {
             self.add_misses(x, y, c, pixel, rays);
             return;
         }
@@ -67,7 +71,12 @@ impl PixelJob<'_> {
         let mut colors = [Color::ZERO; CAMERA_BATCH];
         let mut trace = |batch: &[Ray], first: u32, signs: &[f32]| {
             let colors = &mut colors[..batch.len()];
-            let start = crate::integrator::BatchStart { x, y, index: first };
+            let start = crate::integrator::BatchStart {
+                x,
+                y,
+                index: first,
+                reach,
+            };
             integrator.radiance_batch(scene, batch, start, colors, rays);
             // The sums in locals for the batch, not through the closure's references, so
             // that they stay in registers across the loop.
@@ -123,19 +132,20 @@ impl PixelJob<'_> {
         pixel.add_sums(sum, weight, unsigned, sum_sq, s.spp);
     }
 
-    /// The colour every sample of pixel `(x, y)` takes, where none of its camera rays can
-    /// meet anything (and the integrator gives such rays one colour): the pyramid of rays
-    /// through every film position the filter may put a sample at, widened by an eighth
-    /// of a pixel, lies wholly beside every object's bounds. A sky or a black backdrop
-    /// then costs a test of the pixel instead of a ray for each sample.
+    /// Which objects the camera rays of pixel `(x, y)` may meet: those whose bounds (or,
+    /// for a sphere, itself) are not wholly beside the pyramid of rays through every film
+    /// position the filter may put a sample at, widened by an eighth of a pixel. Where that
+    /// is none (and the integrator gives such rays one colour), every sample takes the
+    /// background without a ray: a sky or a black backdrop costs a test of the pixel.
     #[inline]
-    fn sees_nothing(&self, x: u32, y: u32) -> Option<Color> {
-        let c = self.integrator.camera_miss(self.scene)?;
+    fn reach(&self, x: u32, y: u32) -> Reach {
         let reach = self.scene.settings.filter.radius + 0.125;
         let (cx, cy) = (x as f32 + 0.5, y as f32 + 0.5);
         let rect = [cx - reach, cx + reach, cy - reach, cy + reach];
-        let f = self.camera.film_frustum(rect, self.scene.extent())?;
-        (c.is_finite() && !self.scene.may_meet(&f)).then_some(c)
+        match self.camera.film_frustum(rect, self.scene.extent()) {
+            Some(f) => self.scene.reach(&f),
+            None => Reach::ALL,
+        }
     }
 
     /// Adds `c` for every sample of pixel `(x, y)`, in [`PixelJob::add_stratified`]'s
@@ -388,8 +398,7 @@ mod tests {
     /// gives, for every filter, with fog and without, and counting the same rays.
     #[test]
     fn pixels_that_see_nothing_are_the_background_without_tracing() {
-        let mut skipped = 0;
-        let mut traced = 0;
+        let (mut skipped, mut traced, mut alone) = (0, 0, 0);
         for (filter, fog) in [
             ("gaussian", ""),
             ("mitchell", ""),
@@ -405,7 +414,8 @@ mod tests {
                  [materials.m]\ncolor = [0.8, 0.3, 0.1]\n\
                  [[lights]]\ntype = \"point\"\nposition = [2, 3, 4]\n\
                  [[objects]]\ntype = \"sphere\"\nradius = 0.6\nmaterial = \"m\"\n\
-                 [[objects]]\ntype = \"box\"\nmin = [1.0, 0.5, -1]\nmax = [1.4, 0.9, 0]\nmaterial = \"m\"{fog}\n"
+                 [[objects]]\ntype = \"box\"\nmin = [1.0, 0.5, -1]\nmax = [1.4, 0.9, 0]\nmaterial = \"m\"\n\
+                 [[objects]]\ntype = \"rectangle\"\ncorner = [-1.5, -1, 1]\nedge_u = [3, 0, 0]\nedge_v = [0, 0, -3]\nmaterial = \"m\"{fog}\n"
             );
             let scene = load_str(&text, Path::new("t.toml"), Path::new("."), Format::Toml).unwrap();
             let camera = scene.camera.raster(24, 16);
@@ -416,8 +426,9 @@ mod tests {
             };
             for y in 0..16 {
                 for x in 0..24 {
-                    let shortcut = job.sees_nothing(x, y);
-                    if shortcut.is_some() {
+                    let shortcut = job.reach(x, y).is_none();
+                    alone += (job.reach(x, y).count() == 1) as u32;
+                    if shortcut {
                         skipped += 1;
                         // A 9 x 9 grid of rays over the filter's reach: none meets anything.
                         let r = scene.settings.filter.radius;
@@ -454,7 +465,7 @@ mod tests {
                     };
                     assert_eq!(bits(&pixel), bits(&want), "{filter} ({x}, {y})");
                     assert_eq!(rays.camera, 9);
-                    if shortcut.is_some() {
+                    if shortcut {
                         assert_eq!(
                             rays,
                             RayStats {
@@ -473,6 +484,8 @@ mod tests {
             skipped > 3 * 100 && traced > 3 * 20,
             "{skipped} skipped, {traced} traced"
         );
+        // And pixels whose rays may meet one object only, tested against it alone.
+        assert!(alone > 3 * 20, "{alone} pixels see one object");
     }
 
     /// The sampler's shortcuts (a multiplication for a power-of-two stratum count, no clamp,

@@ -31,7 +31,7 @@ pub use settings::{Fog, IntegratorSettings, RenderSettings};
 pub use stats::{BuildStats, MeshStats};
 
 use crate::accel::Bvh;
-pub use crate::accel::Skip;
+pub use crate::accel::{Reach, Skip};
 use crate::camera::Camera;
 use crate::geometry::{Leaving, Shape, ShapeHit};
 use crate::light::{AreaLight, Environment, Light, LightSampler};
@@ -222,10 +222,10 @@ impl Scene {
         }
     }
 
-    /// Whether any object may be met by a ray of `f` (false only where none can be).
+    /// Which objects the rays of `f` may meet (see [`Bvh::reach`]).
     #[inline]
-    pub fn may_meet(&self, f: &crate::math::Frustum) -> bool {
-        self.accel.may_meet(&self.objects, f)
+    pub fn reach(&self, f: &crate::math::Frustum) -> Reach {
+        self.accel.reach(&self.objects, f)
     }
 
     /// The largest coordinate, in size, of any bounded object's box.
@@ -244,12 +244,14 @@ impl Scene {
     /// [`Scene::closest_hit`] of each of `rays` (any number; `out` as long), found a packet
     /// of [`LANES`] rays at a time (see [`Bvh::closest_hits`]): for the camera rays of a
     /// pixel, which mostly meet the same objects.
-    pub fn closest_hits(&self, rays: &[Ray], out: &mut [Option<Hit>]) {
+    /// `reach` says which objects the rays may meet at all ([`Reach::ALL`] where that is
+    /// not known).
+    pub fn closest_hits(&self, rays: &[Ray], out: &mut [Option<Hit>], reach: Reach) {
         assert_eq!(rays.len(), out.len(), "one hit per ray");
         let mut found = [None; LANES];
         for (rays, out) in rays.chunks(LANES).zip(out.chunks_mut(LANES)) {
             let found = &mut found[..rays.len()];
-            self.accel.closest_hits(&self.objects, rays, found);
+            self.accel.closest_hits(&self.objects, rays, found, reach);
             for ((ray, f), o) in rays.iter().zip(found.iter()).zip(out) {
                 *o = match f {
                     Some((i, _)) if self.any_cutout && self.cutouts[*i] => {

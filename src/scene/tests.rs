@@ -182,7 +182,7 @@ fn packets_find_what_single_rays_find() {
                 })
                 .collect();
             let mut found = vec![None; n];
-            scene.closest_hits(&rays, &mut found);
+            scene.closest_hits(&rays, &mut found, crate::scene::Reach::ALL);
             for (ray, got) in rays.iter().zip(&found) {
                 let want = scene.closest_hit(ray, f32::INFINITY);
                 // Debug prints every float exactly (the shortest form that reads back).

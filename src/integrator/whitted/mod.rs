@@ -57,7 +57,7 @@ impl Integrator for Whitted {
         for (batch, out) in batch.chunks(N).zip(out.chunks_mut(N)) {
             let mut found: [Option<Hit>; N] = [None; N];
             let found = &mut found[..batch.len()];
-            scene.closest_hits(batch, found);
+            scene.closest_hits(batch, found, first.reach);
             for ((ray, f), o) in batch.iter().zip(found.iter()).zip(out.iter_mut()) {
                 let u = if scene.disperses() {
                     wavelength_number(first.x, first.y, index)
