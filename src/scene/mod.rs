@@ -8,6 +8,7 @@ mod diag;
 mod footprint;
 pub mod format;
 mod gltf;
+mod inside;
 mod limits;
 mod load;
 mod meshes;
@@ -128,6 +129,8 @@ pub struct Scene {
     cutouts: Vec<bool>,
     /// Whether any object has.
     any_cutout: bool,
+    /// Per object: whether a ray inside it can only meet it (see `inside.rs`).
+    alone_inside: Vec<bool>,
     /// Whether a material disperses light (see [`Scene::disperses`]).
     dispersive: bool,
     /// The files the scene read besides itself (textures, meshes, MTL files and their

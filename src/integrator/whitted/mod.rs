@@ -15,6 +15,9 @@ use crate::math::{
 };
 use crate::scene::{Hit, RayDifferentials, Scene, Skip};
 
+/// [`Segment::inside`] of a ray in open air.
+const NOT_INSIDE: u32 = u32::MAX;
+
 /// The Whitted integrator.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct Whitted;
@@ -85,6 +88,9 @@ struct Segment {
     weight: Color,
     /// The object whose surface the ray leaves, when it cannot meet it again.
     skip: Skip,
+    /// The solid the ray travels inside ([`NOT_INSIDE`] in open air), for a solid that
+    /// nothing else reaches into: then the ray can only meet it.
+    inside: u32,
     /// How the ray changes to the next pixels, while it has only met mirrors and glass.
     diff: RayDifferentials,
     /// The wavelength (nm) the tree follows below a surface whose index depends on it; 0
@@ -107,6 +113,7 @@ impl Segment {
             medium: None,
             weight: Color::ONE,
             skip: Skip::NONE,
+            inside: NOT_INSIDE,
             diff: RayDifferentials::camera(scene),
             nm: 0.0,
             u_wavelength,
@@ -150,6 +157,7 @@ impl Whitted {
             medium,
             weight: Color::ONE,
             skip: Skip::NONE,
+            inside: NOT_INSIDE,
             diff: if depth == 1 {
                 RayDifferentials::camera(scene)
             } else {
@@ -195,6 +203,8 @@ impl Whitted {
         // A record shows the uv even where no texture needs it.
         let found = if R::ACTIVE {
             scene.closest_hit_with_uv(ray, f32::INFINITY, seg.skip)
+        } else if seg.inside != NOT_INSIDE && scene.is_alone_inside(seg.inside as usize) {
+            scene.hit_from_inside(seg.inside as usize, ray)
         } else {
             scene.closest_hit_skipping(ray, f32::INFINITY, seg.skip)
         };
@@ -495,6 +505,11 @@ impl Whitted {
                     medium: inside,
                     weight,
                     skip: scene.leaving(hit, !entering),
+                    inside: if entering {
+                        hit.object as u32
+                    } else {
+                        NOT_INSIDE
+                    },
                     nm,
                     u_wavelength: seg.u_wavelength,
                     diff: passed_on().map_or(RayDifferentials::None, |(diff, dp, dn)| {
@@ -518,6 +533,12 @@ impl Whitted {
                 medium: seg.medium,
                 weight: reflect_weight,
                 skip: skip_above,
+                // Reflected off the inside, a ray stays in the solid.
+                inside: if entering {
+                    seg.inside
+                } else {
+                    hit.object as u32
+                },
                 nm,
                 u_wavelength: seg.u_wavelength,
                 diff: passed_on().map_or(RayDifferentials::None, |(diff, dp, dn)| {

@@ -293,6 +293,7 @@ impl Builder<'_> {
             })
             .collect();
         let dispersive = materials.iter().any(|m| m.dispersion.is_some());
+        let alone_inside = crate::scene::inside::alone_inside(&objects, &cutouts);
         let mut scene = Scene {
             camera,
             settings,
@@ -318,6 +319,7 @@ impl Builder<'_> {
             needs_uv1,
             textured,
             any_cutout: cutouts.contains(&true),
+            alone_inside,
             dispersive,
             cutouts,
             stats: std::mem::take(&mut self.stats),
