@@ -16,6 +16,8 @@ pub struct Frustum {
     /// Per plane, how far below zero `n . p - n . eye` must be for a point to count as
     /// outside: `n . eye` less a slack for the rounding of those products.
     pub limits: [f32; 4],
+    /// Per plane, the length of its normal.
+    pub lengths: [f32; 4],
 }
 
 impl Frustum {
@@ -52,6 +54,7 @@ impl Frustum {
             eye,
             normals,
             limits,
+            lengths: normals.map(|n| n.length()),
         }
     }
 
@@ -69,10 +72,7 @@ impl Frustum {
     /// Whether the ball of `radius` around `center` lies wholly outside (beyond one plane).
     #[inline]
     pub fn excludes_sphere(&self, center: Vec3A, radius: f32) -> bool {
-        self.normals
-            .iter()
-            .zip(self.limits)
-            .any(|(n, limit)| n.dot(center) + radius * n.length() < limit)
+        (0..4).any(|k| self.normals[k].dot(center) + radius * self.lengths[k] < self.limits[k])
     }
 
     /// A bit per box of `boxes` (eight boxes' bounds side by side: per axis, the smallest
