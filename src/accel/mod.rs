@@ -352,8 +352,9 @@ impl Bvh {
     /// slower (docs/perf-log.md).
     ///
     /// `reach` says which objects the rays may meet at all (see [`Bvh::reach`]): the others
-    /// are not tested, and where that leaves one sphere or rectangle (a pixel that sees only
-    /// the floor), the packet is tested against it alone, without the boxes.
+    /// are not tested, and where that leaves a few spheres or rectangles (a pixel that sees
+    /// only the floor, or a ball on it), the packet is tested against each of them, without
+    /// the boxes ([`closest_among_few`]).
     #[inline(always)]
     pub fn closest_hits(
         &self,
@@ -374,30 +375,11 @@ impl Bvh {
             }
         };
         let used = flat.used & reach.0;
-        if used.count_ones() == 1 && self.unbounded.is_empty() {
-            let i = flat.node.child[used.trailing_zeros() as usize] as usize;
-            let packet = RayLanes::new(rays);
-            const NO_LIMIT: [f32; LANES] = [f32::INFINITY; LANES];
-            let ts = match (&objects[i].transform, &objects[i].shape) {
-                (None, Shape::Sphere(s)) => Some(s.intersect_lanes(&packet, &NO_LIMIT)),
-                (None, Shape::Rect(r)) => Some(r.intersect_lanes(&packet, &NO_LIMIT)),
-                _ => None,
-            };
-            if let Some(ts) = ts {
-                for (o, &t) in out.iter_mut().zip(&ts) {
-                    // (An infinite distance is a packet test's miss.)
-                    *o = (t != f32::INFINITY).then_some((
-                        i,
-                        ShapeHit {
-                            t,
-                            part: 0,
-                            prim: 0,
-                            bary: glam::Vec2::ZERO,
-                        },
-                    ));
-                }
-                return;
-            }
+        if used.count_ones() <= FEW
+            && self.unbounded.is_empty()
+            && closest_among_few(objects, flat, used, rays, out)
+        {
+            return;
         }
         // Each lane's nearest hit so far, as the walk finds it: unbounded objects first.
         let mut limit = [f32::INFINITY; LANES];
@@ -524,6 +506,59 @@ impl Bvh {
         });
         (found, others)
     }
+}
+
+/// Most objects [`Bvh::closest_hits`] tests against a whole packet each, without boxes.
+const FEW: u32 = 3;
+
+/// [`Bvh::closest_hits`] where the rays may meet only the objects in the slots of `used`
+/// (at most [`FEW`]), all spheres or rectangles in world space: each is tested against the
+/// whole packet at once and each ray keeps its nearest hit (a pixel that sees a ball on a
+/// floor). False, with `out` left unfinished, where it cannot say: another kind of object,
+/// or two objects at exactly one distance along some ray (a tie the walk settles by the
+/// order in which it enters their boxes).
+#[inline(always)]
+fn closest_among_few(
+    objects: &[Object],
+    flat: &Flat,
+    used: u32,
+    rays: &[Ray],
+    out: &mut [Option<(usize, ShapeHit)>],
+) -> bool {
+    const NO_LIMIT: [f32; LANES] = [f32::INFINITY; LANES];
+    let packet = RayLanes::new(rays);
+    let (mut nearest, mut which) = ([f32::INFINITY; LANES], [0usize; LANES]);
+    let mut left = used;
+    while left != 0 {
+        let i = flat.node.child[left.trailing_zeros() as usize] as usize;
+        left &= left - 1;
+        let ts = match (&objects[i].transform, &objects[i].shape) {
+            (None, Shape::Sphere(s)) => s.intersect_lanes(&packet, &NO_LIMIT),
+            (None, Shape::Rect(r)) => r.intersect_lanes(&packet, &NO_LIMIT),
+            _ => return false,
+        };
+        for l in 0..rays.len() {
+            // (An infinite distance is a packet test's miss.)
+            if ts[l] == nearest[l] && ts[l] != f32::INFINITY {
+                return false;
+            }
+            if ts[l] < nearest[l] {
+                (nearest[l], which[l]) = (ts[l], i);
+            }
+        }
+    }
+    for ((o, &t), &i) in out.iter_mut().zip(&nearest).zip(&which) {
+        *o = (t != f32::INFINITY).then_some((
+            i,
+            ShapeHit {
+                t,
+                part: 0,
+                prim: 0,
+                bary: glam::Vec2::ZERO,
+            },
+        ));
+    }
+    true
 }
 
 /// Pushes `entry` (a child's reference and where the ray enters its box) on top of
