@@ -282,6 +282,16 @@ impl Camera {
         }
     }
 
+    /// The most a perspective camera ray's direction changes to the next pixel's of an image
+    /// `height` pixels tall ([`Camera::differentials`]' `dx_dir` and `dy_dir` are never
+    /// longer); `None` for parallel rays, whose neighbours are offset instead.
+    pub fn pixel_spread(&self, height: u32) -> Option<f32> {
+        match self.view.projection {
+            Projection::Orthographic { .. } => None,
+            _ => Some(2.0 * self.half_height() / height as f32),
+        }
+    }
+
     /// The camera set up for an image of `width` by `height` pixels, for many rays.
     #[inline]
     pub fn raster(&self, width: u32, height: u32) -> RasterCamera {

@@ -354,7 +354,7 @@ impl Bvh {
     /// `reach` says which objects the rays may meet at all (see [`Bvh::reach`]): the others
     /// are not tested, and where that leaves a few spheres or rectangles (a pixel that sees
     /// only the floor, or a ball on it), the packet is tested against each of them, without
-    /// the boxes ([`closest_among_few`]).
+    /// the boxes (`closest_among_few`).
     #[inline(always)]
     pub fn closest_hits(
         &self,

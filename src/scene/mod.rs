@@ -125,6 +125,8 @@ pub struct Scene {
     needs_uv1: Vec<bool>,
     /// Per material: whether it reads a texture that varies over the surface.
     textured: Vec<bool>,
+    /// Per material: whether the one texture it reads that varies is its colour's.
+    base_only: Vec<bool>,
     /// Per object: whether a material of it has holes cut by alpha (see `cutout.rs`).
     cutouts: Vec<bool>,
     /// Whether any object has.
@@ -160,6 +162,27 @@ impl Scene {
                 .differentials(ray, s.height)
                 .scaled(crate::math::differential::camera_scale(s.spp))
         })
+    }
+
+    /// The most a camera ray's differentials ([`Scene::camera_differentials`]) turn its
+    /// direction: `None` where it has none, or its neighbours are offset (parallel rays).
+    #[inline]
+    pub fn camera_spread(&self) -> Option<f32> {
+        let s = &self.settings;
+        let spread = self.camera.pixel_spread(s.height)?;
+        s.filter_textures
+            .then(|| spread * crate::math::differential::camera_scale(s.spp))
+    }
+
+    /// Whether the material at `hit` reads one colour over any footprint that reaches no
+    /// further than `reach` (world units) from the hit: its one varying texture is its
+    /// colour's, the object is placed without a transform (so its space is the world's),
+    /// and that texture says so ([`crate::texture::Texture::flat_within`]).
+    #[inline]
+    pub fn texture_flat_within(&self, hit: &Hit, reach: f32) -> bool {
+        self.base_only[hit.material]
+            && self.objects[hit.object].transform.is_none()
+            && self.textures[self.materials[hit.material].texture].flat_within(&hit.tex, reach)
     }
 
     /// The area light a hit is on (its index in [`Scene::lights`]), if the path tracer

@@ -27,6 +27,14 @@ pub fn square_wave(x: f32, r: f32) -> f32 {
         .clamp(-1.0, 1.0) as f32
 }
 
+/// Whether [`square_wave`] at `x` under a tent of radius at most `r` is the cell's value:
+/// the tent stays inside the cell of `x` (as `square_wave` tells, so that the two agree to
+/// the bit: a narrower tent's ends lie between these).
+#[inline]
+pub fn within_cell(x: f32, r: f32) -> bool {
+    r.is_finite() && (x - r).floor() == (x + r).floor()
+}
+
 /// The square wave's second integral from 0: per period of 2 it rises by 1, as `f^2 / 2`
 /// over the `+1` cell and `1/2 + 2 (f - 1) - (f^2 - 1) / 2` over the `-1` one, where `f` is
 /// the position in the period.

@@ -33,6 +33,12 @@ impl Paint for Checker {
         mix(self.even, self.odd, w)
     }
 
+    /// Both square waves (`filtered`'s) stay inside their cells.
+    fn flat_over(&self, uv: Vec2, r: Vec2) -> bool {
+        antialias::within_cell(uv.x / self.size, r.x / self.size)
+            && antialias::within_cell(uv.y / self.size, r.y / self.size)
+    }
+
     /// The mean of the two colours, whose cells are equal.
     fn mean(&self) -> Color {
         (self.even + self.odd) * 0.5

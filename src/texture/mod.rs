@@ -45,6 +45,13 @@ crate::closed_set! {
         fn constant(&self) -> Option<Color> {
             None
         }
+
+        /// Whether the pattern is certainly one colour over the box `uv - r` to `uv + r`, so
+        /// that any footprint within it filters to the colour at `uv`, to the bit (false
+        /// where it cannot say).
+        fn flat_over(&self, uv: Vec2, r: Vec2) -> bool {
+            false
+        }
     }
 
     /// What a texture shows: one of a closed set, one file per pattern.
@@ -67,11 +74,17 @@ fn footprint_radius(dx: Vec2, dy: Vec2) -> Vec2 {
     Vec2::new(dx.x.abs().max(dy.x.abs()), dx.y.abs().max(dy.y.abs()))
 }
 
-/// A mix of two colours: `w` is +1 for the first, -1 for the second (exactly the colour
-/// where both are the same).
+/// A mix of two colours: `w` is +1 for the first, -1 for the second (each exactly, as the
+/// pattern read at a point gives it; and exactly the colour where both are the same).
 #[inline]
 fn mix(first: Color, second: Color, w: f32) -> Color {
-    second + (first - second) * (0.5 + 0.5 * w)
+    if w >= 1.0 {
+        first
+    } else if w <= -1.0 {
+        second
+    } else {
+        second + (first - second) * (0.5 + 0.5 * w)
+    }
 }
 
 /// A pattern and the mapping that places it on a surface.
@@ -121,6 +134,22 @@ impl Texture {
             return self.pattern.filtered(uv, dx, dy, self.wraps());
         }
         self.pattern.at(self.mapping.uv(p), self.wraps())
+    }
+
+    /// Whether the texture is certainly one colour over every footprint at `p` that reaches
+    /// no further than `reach` from it (object-space units): then reading it at the point
+    /// gives what filtering gives, to the bit. Planar mappings of checkers and stripes can
+    /// say (their coordinates change by at most `reach` times an axis's length); others
+    /// cannot (false).
+    #[inline]
+    pub fn flat_within(&self, p: &TexturePoint, reach: f32) -> bool {
+        match self.mapping {
+            Mapping::Planar { u_axis, v_axis, .. } => {
+                let r = Vec2::new(u_axis.length(), v_axis.length()) * reach;
+                self.pattern.flat_over(self.mapping.uv(p), r)
+            }
+            _ => false,
+        }
     }
 
     /// The image's wrap modes as read through its mapping (a spherical one clamps v).

@@ -292,6 +292,16 @@ impl Builder<'_> {
                     .any(|&t| !matches!(textures[t].pattern, Pattern::Solid(_)))
             })
             .collect();
+        let base_only = materials
+            .iter()
+            .map(|m| {
+                let mut varying = m
+                    .textures()
+                    .into_iter()
+                    .filter(|&t| !matches!(textures[t].pattern, Pattern::Solid(_)));
+                varying.all(|t| t == m.texture)
+            })
+            .collect();
         let dispersive = materials.iter().any(|m| m.dispersion.is_some());
         let alone_inside = crate::scene::inside::alone_inside(&objects, &cutouts);
         let mut scene = Scene {
@@ -318,6 +328,7 @@ impl Builder<'_> {
             needs_uv,
             needs_uv1,
             textured,
+            base_only,
             any_cutout: cutouts.contains(&true),
             alone_inside,
             dispersive,
