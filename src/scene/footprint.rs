@@ -1,5 +1,6 @@
 //! The patch of surface a pixel sees at a hit, from the ray's differentials: what texture
-//! filtering reads, and what a mirror or glass needs to pass the differentials on.
+//! filtering reads, and what a mirror or glass needs to pass the differentials on; and
+//! where a bound on it shows a texture one colour over it, so that none need be worked out.
 
 use super::Object;
 use super::{Hit, Scene};
@@ -143,5 +144,152 @@ impl Scene {
             patch.dn = [world(nx), world(ny)];
         }
         Some(patch)
+    }
+
+    /// The most a camera ray's differentials ([`Scene::camera_differentials`]) turn its
+    /// direction: `None` where it has none, or its neighbours are offset (parallel rays).
+    #[inline]
+    pub fn camera_spread(&self) -> Option<f32> {
+        let s = &self.settings;
+        let spread = self.camera.pixel_spread(s.height)?;
+        s.filter_textures
+            .then(|| spread * crate::math::differential::camera_scale(s.spp))
+    }
+
+    /// Whether the material at `hit` reads one colour over any footprint that reaches no
+    /// further than `reach` (world units) from the hit: its one varying texture is its
+    /// colour's, the object is placed without a transform (so its space is the world's),
+    /// and that texture says so ([`crate::texture::Texture::flat_within`]).
+    #[inline]
+    pub fn texture_flat_within(&self, hit: &Hit, reach: f32) -> bool {
+        self.base_only[hit.material]
+            && self.objects[hit.object].transform.is_none()
+            && self.textures[self.materials[hit.material].texture].flat_within(&hit.tex, reach)
+    }
+
+    /// Whether the textures at `hit` are one colour over the footprint of `ray`'s
+    /// differentials `diff`, from a bound on the footprint that needs no footprint worked out
+    /// ([`Scene::texture_flat_within`]). A neighbour whose origin is `do` and direction `dd`
+    /// away meets the hit's tangent plane at
+    /// `do + (dd c t - d f - dd f - d t e) / (c + e)` from the hit (`c = n . d`, `e = n . dd`,
+    /// `f = n . do`, `t` the hit's distance along the unit `d`), no further than
+    /// `|do| + (|dd| t (|c| + 1) + |do| (1 + |dd|)) / (|c| - |dd|)`; a camera ray's neighbours
+    /// share its origin and turn by at most the camera's spread. Where that is inside one cell
+    /// of a checker, the texture read at the point is what the footprint's filter gives, and
+    /// the footprint is not worked out: most of a checker floor, seen or mirrored.
+    #[inline]
+    pub fn footprint_is_flat(&self, ray: &Ray, hit: &Hit, diff: &RayDifferentials) -> bool {
+        let c = ray.dir.dot(hit.normal).abs();
+        let t = hit.t;
+        let reach = |origin: f32, turn: f32| {
+            (c > 2.0 * turn)
+                .then(|| origin + (turn * t * (c + 1.0) + origin * (1.0 + turn)) / (c - turn))
+        };
+        let reach = match diff {
+            RayDifferentials::None => None,
+            RayDifferentials::Camera => self.camera_spread().and_then(|spread| reach(0.0, spread)),
+            RayDifferentials::Known(d) => reach(d.dx_origin.length(), d.dx_dir.length())
+                .zip(reach(d.dy_origin.length(), d.dy_dir.length()))
+                .map(|(x, y)| x.max(y)),
+        };
+        // A hundredth more, for the rounding of the footprint's own arithmetic.
+        reach.is_some_and(|r| self.texture_flat_within(hit, r * 1.01))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    /// Where a camera ray's footprint, or a mirrored ray's, is taken as flat without working
+    /// it out, the texture read at the point is what the filter over the footprint gives, to
+    /// the bit: a checker and stripes on floors under a tilted camera, at several sample
+    /// counts, for camera rays and for rays with differentials of their own (as a mirror passes
+    /// on); and both kinds of hit are found.
+    #[test]
+    fn a_flat_footprint_reads_what_the_filter_gives() {
+        use crate::math::{Rng, Vec3A};
+        use crate::scene::{Format, RayDifferentials, load_str};
+        use crate::texture::TexturePoint;
+        use std::path::Path;
+        // Per kind of ray (camera, own differentials): footprints found flat, and not.
+        let (mut flat, mut filtered) = ([0; 2], [0; 2]);
+        for (spp, texture) in [
+            (
+                16,
+                "type = \"checker\"\neven = [0.9, 0.8, 0.1]\nodd = [0.05, 0.2, 0.6]\nsize = 0.7",
+            ),
+            (4, "type = \"checker\"\nsize = 0.25"),
+            (
+                1,
+                "type = \"stripes\"\na = [0.3, 0.7, 0.2]\nb = [1, 0.4, 0.9]\nwidth = 0.4",
+            ),
+        ] {
+            let text = format!(
+                "[image]\nwidth = 256\nheight = 192\nsamples = {spp}\n\
+                 [camera]\nposition = [0, 2, 6]\nlook_at = [1, 0, -10]\nfov = 50\n\
+                 [textures.t]\n{texture}\n\
+                 mapping = {{ type = \"planar\", origin = [0.3, 0, 0.1], u = [1, 0, 0.2], v = [0, 0, 1.5] }}\n\
+                 [materials.m]\ntexture = \"t\"\n\
+                 [[objects]]\ntype = \"rectangle\"\ncorner = [-30, -1, 8]\nedge_u = [60, 0, 0]\nedge_v = [0, 0, -80]\nmaterial = \"m\"\n"
+            );
+            let scene = load_str(&text, Path::new("t.toml"), Path::new("."), Format::Toml).unwrap();
+            let camera = scene.camera.raster(256, 192);
+            let mut rng = Rng::new(spp as u64);
+            let mut random = |scale: f32| {
+                Vec3A::new(rng.next_f32(), rng.next_f32(), rng.next_f32()) * (2.0 * scale) - scale
+            };
+            for k in 0..40_000 {
+                // Camera rays, and rays with differentials of their own (as a mirror passes
+                // on): from above the floor, down, their neighbours apart and turning.
+                let (ray, diff) = if k % 2 == 0 {
+                    let (x, y) = (random(128.0).x + 128.0, random(96.0).y + 96.0);
+                    let ray = camera.ray(x, y);
+                    (ray, RayDifferentials::Camera)
+                } else {
+                    let origin = random(5.0) + Vec3A::new(0.0, 6.0, -5.0);
+                    let dir = (random(1.0) - Vec3A::Y * 1.2).normalize();
+                    let d = crate::math::differential::Differentials {
+                        dx_origin: random(0.02),
+                        dx_dir: random(0.004),
+                        dy_origin: random(0.02),
+                        dy_dir: random(0.004),
+                    };
+                    (
+                        crate::math::Ray::new(origin, dir),
+                        RayDifferentials::Known(d),
+                    )
+                };
+                let Some(hit) = scene.closest_hit(&ray, f32::INFINITY) else {
+                    continue;
+                };
+                let Some(d) = diff.of(&scene, &ray) else {
+                    continue;
+                };
+                let patch = scene.patch(&hit, &ray, &d, false);
+                let footprint = patch.as_ref().map(|p| &p.footprint);
+                let tex = TexturePoint {
+                    footprint,
+                    ..hit.tex
+                };
+                let through = scene.base_color(&hit, &tex);
+                if scene.footprint_is_flat(&ray, &hit, &diff) {
+                    let at_point = scene.base_color(&hit, &hit.tex);
+                    assert_eq!(
+                        at_point.to_array().map(f32::to_bits),
+                        through.to_array().map(f32::to_bits),
+                        "{spp} spp, {ray:?}"
+                    );
+                    flat[k % 2] += 1;
+                } else {
+                    filtered[k % 2] += 1;
+                }
+                assert!(hit.point.is_finite() && hit.normal != Vec3A::ZERO);
+            }
+        }
+        for kind in 0..2 {
+            assert!(
+                flat[kind] > 2_000 && filtered[kind] > 500,
+                "{flat:?} flat, {filtered:?} filtered"
+            );
+        }
     }
 }

@@ -164,27 +164,6 @@ impl Scene {
         })
     }
 
-    /// The most a camera ray's differentials ([`Scene::camera_differentials`]) turn its
-    /// direction: `None` where it has none, or its neighbours are offset (parallel rays).
-    #[inline]
-    pub fn camera_spread(&self) -> Option<f32> {
-        let s = &self.settings;
-        let spread = self.camera.pixel_spread(s.height)?;
-        s.filter_textures
-            .then(|| spread * crate::math::differential::camera_scale(s.spp))
-    }
-
-    /// Whether the material at `hit` reads one colour over any footprint that reaches no
-    /// further than `reach` (world units) from the hit: its one varying texture is its
-    /// colour's, the object is placed without a transform (so its space is the world's),
-    /// and that texture says so ([`crate::texture::Texture::flat_within`]).
-    #[inline]
-    pub fn texture_flat_within(&self, hit: &Hit, reach: f32) -> bool {
-        self.base_only[hit.material]
-            && self.objects[hit.object].transform.is_none()
-            && self.textures[self.materials[hit.material].texture].flat_within(&hit.tex, reach)
-    }
-
     /// The area light a hit is on (its index in [`Scene::lights`]), if the path tracer
     /// samples the emission there.
     #[inline]

@@ -3,6 +3,7 @@
 //! reflection, and refraction by Snell's law with exact Fresnel weights and total internal
 //! reflection, through solids of any shape, with Beer-Lambert absorption inside them.
 
+mod phong;
 mod shadow;
 
 use super::explain::{
@@ -14,35 +15,7 @@ use crate::math::{
     Color, Ray, Vec3A, Wavelength, fresnel_dielectric, offset_ray_origin, reflect, refract,
 };
 use crate::scene::{Hit, RayDifferentials, Scene, Skip};
-
-/// Whether the textures at `hit` are one colour over the footprint of `ray`'s
-/// differentials `diff`, from a bound on the footprint that needs no footprint worked out
-/// ([`Scene::texture_flat_within`]). A neighbour whose origin is `do` and direction `dd`
-/// away meets the hit's tangent plane at
-/// `do + (dd c t - d f - dd f - d t e) / (c + e)` from the hit (`c = n . d`, `e = n . dd`,
-/// `f = n . do`, `t` the hit's distance along the unit `d`), no further than
-/// `|do| + (|dd| t (|c| + 1) + |do| (1 + |dd|)) / (|c| - |dd|)`; a camera ray's neighbours
-/// share its origin and turn by at most the camera's spread. Where that is inside one cell
-/// of a checker, the texture read at the point is what the footprint's filter gives, and
-/// the footprint is not worked out: most of a checker floor, seen or mirrored.
-#[inline]
-fn footprint_flat(scene: &Scene, ray: &Ray, hit: &Hit, diff: &RayDifferentials) -> bool {
-    let c = ray.dir.dot(hit.normal).abs();
-    let t = hit.t;
-    let reach = |origin: f32, turn: f32| {
-        (c > 2.0 * turn)
-            .then(|| origin + (turn * t * (c + 1.0) + origin * (1.0 + turn)) / (c - turn))
-    };
-    let reach = match diff {
-        RayDifferentials::None => None,
-        RayDifferentials::Camera => scene.camera_spread().and_then(|spread| reach(0.0, spread)),
-        RayDifferentials::Known(d) => reach(d.dx_origin.length(), d.dx_dir.length())
-            .zip(reach(d.dy_origin.length(), d.dy_dir.length()))
-            .map(|(x, y)| x.max(y)),
-    };
-    // A hundredth more, for the rounding of the footprint's own arithmetic.
-    reach.is_some_and(|r| scene.texture_flat_within(hit, r * 1.01))
-}
+use phong::phong_lobe;
 
 /// [`Segment::inside`] of a ray in open air.
 const NOT_INSIDE: u32 = u32::MAX;
@@ -347,7 +320,7 @@ impl Whitted {
                     || m.terms.transparency > 0.0
                     || m.textured.is_some();
                 let deeper = on && seg.depth < scene.settings.max_depth;
-                if !deeper && footprint_flat(scene, ray, hit, &d) {
+                if !deeper && scene.footprint_is_flat(ray, hit, &d) {
                     None
                 } else {
                     d.of(scene, ray)
@@ -640,37 +613,6 @@ fn light_record(
     }
 }
 
-/// Phong's highlight, `max(cos, 0)^shininess`. Whole exponents up to 256 (as scene files
-/// give them) are raised by repeated squaring, several times cheaper than `powf`'s logarithm
-/// and exponential; each squaring doubles the rounding error, which stays under 2e-5 of the
-/// value there. From exponent 32 on, a cosine under 1/2 gives under 2^-32 of the light
-/// (2.3e-10, nothing a picture can show), taken as 0 without the squarings: most directions
-/// are that far from the highlight.
-#[inline]
-fn phong_lobe(cos: f32, shininess: f32) -> f32 {
-    let c = cos.max(0.0);
-    if shininess == shininess.trunc() && (0.0..=256.0).contains(&shininess) {
-        if shininess >= 32.0 && c < 0.5 {
-            return 0.0;
-        }
-        // `powi`'s own squarings, in its order (the same bits), inline: a variable exponent
-        // made `powi` a call into the runtime library.
-        let (mut base, mut e, mut product) = (c, shininess as u32, 1.0f32);
-        loop {
-            if e & 1 != 0 {
-                product *= base;
-            }
-            e >>= 1;
-            if e == 0 {
-                return product;
-            }
-            base *= base;
-        }
-    } else {
-        c.powf(shininess)
-    }
-}
-
 /// A number in `[0, 1)` from a camera ray's bits, for the wavelength its tree follows where
 /// the ray is not one of a pixel's samples (`snell explain`'s, [`Whitted::trace`]'s): the
 /// same ray always gets the same one.
@@ -705,135 +647,4 @@ fn beer_lambert(sigma: Color, distance: f32) -> Color {
         (-sigma.y * distance).exp(),
         (-sigma.z * distance).exp(),
     )
-}
-
-#[cfg(test)]
-mod tests {
-    use super::phong_lobe;
-
-    /// Where a camera ray's footprint, or a mirrored ray's, is taken as flat without working
-    /// it out, the texture read at the point is what the filter over the footprint gives, to
-    /// the bit: a checker and stripes on floors under a tilted camera, at several sample
-    /// counts, seen directly and in a mirror ball; and both kinds of hit are found.
-    #[test]
-    fn a_flat_footprint_reads_what_the_filter_gives() {
-        use crate::math::{Rng, Vec3A};
-        use crate::scene::{Format, RayDifferentials, load_str};
-        use crate::texture::TexturePoint;
-        use std::path::Path;
-        // Per kind of ray (camera, own differentials): footprints found flat, and not.
-        let (mut flat, mut filtered) = ([0; 2], [0; 2]);
-        for (spp, texture) in [
-            (
-                16,
-                "type = \"checker\"\neven = [0.9, 0.8, 0.1]\nodd = [0.05, 0.2, 0.6]\nsize = 0.7",
-            ),
-            (4, "type = \"checker\"\nsize = 0.25"),
-            (
-                1,
-                "type = \"stripes\"\na = [0.3, 0.7, 0.2]\nb = [1, 0.4, 0.9]\nwidth = 0.4",
-            ),
-        ] {
-            let text = format!(
-                "[image]\nwidth = 256\nheight = 192\nsamples = {spp}\n\
-                 [camera]\nposition = [0, 2, 6]\nlook_at = [1, 0, -10]\nfov = 50\n\
-                 [textures.t]\n{texture}\n\
-                 mapping = {{ type = \"planar\", origin = [0.3, 0, 0.1], u = [1, 0, 0.2], v = [0, 0, 1.5] }}\n\
-                 [materials.m]\ntexture = \"t\"\n\
-                 [[objects]]\ntype = \"rectangle\"\ncorner = [-30, -1, 8]\nedge_u = [60, 0, 0]\nedge_v = [0, 0, -80]\nmaterial = \"m\"\n"
-            );
-            let scene = load_str(&text, Path::new("t.toml"), Path::new("."), Format::Toml).unwrap();
-            let camera = scene.camera.raster(256, 192);
-            let mut rng = Rng::new(spp as u64);
-            let mut random = |scale: f32| {
-                Vec3A::new(rng.next_f32(), rng.next_f32(), rng.next_f32()) * (2.0 * scale) - scale
-            };
-            for k in 0..40_000 {
-                // Camera rays, and rays with differentials of their own (as a mirror passes
-                // on): from above the floor, down, their neighbours apart and turning.
-                let (ray, diff) = if k % 2 == 0 {
-                    let (x, y) = (random(128.0).x + 128.0, random(96.0).y + 96.0);
-                    let ray = camera.ray(x, y);
-                    (ray, RayDifferentials::Camera)
-                } else {
-                    let origin = random(5.0) + Vec3A::new(0.0, 6.0, -5.0);
-                    let dir = (random(1.0) - Vec3A::Y * 1.2).normalize();
-                    let d = crate::math::differential::Differentials {
-                        dx_origin: random(0.02),
-                        dx_dir: random(0.004),
-                        dy_origin: random(0.02),
-                        dy_dir: random(0.004),
-                    };
-                    (
-                        crate::math::Ray::new(origin, dir),
-                        RayDifferentials::Known(d),
-                    )
-                };
-                let Some(hit) = scene.closest_hit(&ray, f32::INFINITY) else {
-                    continue;
-                };
-                let Some(d) = diff.of(&scene, &ray) else {
-                    continue;
-                };
-                let patch = scene.patch(&hit, &ray, &d, false);
-                let footprint = patch.as_ref().map(|p| &p.footprint);
-                let tex = TexturePoint {
-                    footprint,
-                    ..hit.tex
-                };
-                let through = scene.base_color(&hit, &tex);
-                if super::footprint_flat(&scene, &ray, &hit, &diff) {
-                    let at_point = scene.base_color(&hit, &hit.tex);
-                    assert_eq!(
-                        at_point.to_array().map(f32::to_bits),
-                        through.to_array().map(f32::to_bits),
-                        "{spp} spp, {ray:?}"
-                    );
-                    flat[k % 2] += 1;
-                } else {
-                    filtered[k % 2] += 1;
-                }
-                assert!(hit.point.is_finite() && hit.normal != Vec3A::ZERO);
-            }
-        }
-        for kind in 0..2 {
-            assert!(
-                flat[kind] > 2_000 && filtered[kind] > 500,
-                "{flat:?} flat, {filtered:?} filtered"
-            );
-        }
-    }
-
-    #[test]
-    fn phong_lobe_is_powf_within_rounding() {
-        for shininess in [
-            0.0f32, 1.0, 2.0, 7.0, 50.0, 100.0, 256.0, 1000.0, 2.5, 49.9, 5000.0,
-        ] {
-            for k in 0..=1000 {
-                let c = k as f32 / 1000.0;
-                let (fast, exact) = (phong_lobe(c, shininess), c.powf(shininess));
-                // Relative error, or below 2^-32 where the lobe is cut off.
-                assert!(
-                    (fast - exact).abs() <= 2e-5 * exact.max(1e-30)
-                        || (fast == 0.0 && exact < 2.33e-10),
-                    "{c}^{shininess}: {fast} against {exact}"
-                );
-            }
-            assert_eq!(phong_lobe(-0.5, shininess), 0.0f32.powf(shininess));
-        }
-        // The whole exponents' squarings are `powi`'s, to the bit.
-        let mut checked = 0;
-        for e in 0..=256u32 {
-            for k in 500..=1000 {
-                let c = k as f32 / 1000.0;
-                assert_eq!(
-                    phong_lobe(c, e as f32).to_bits(),
-                    c.powi(e as i32).to_bits(),
-                    "{c}^{e}"
-                );
-                checked += 1;
-            }
-        }
-        assert_eq!(checked, 257 * 501);
-    }
 }
