@@ -300,7 +300,8 @@ const CAMERA_BATCH: usize = 16;
 /// `c`, or `None` where it is NaN or infinite: a non-finite sample would poison the whole
 /// pixel, so it is left out of the pixel's value (the pixel is the mean of its other
 /// samples), counted, and its place kept as an example.
-#[inline]
+/// (Always inlined: docs/perf-log.md, "The seed's hot helpers inlined".)
+#[inline(always)]
 fn checked(
     scene: &Scene,
     c: Color,

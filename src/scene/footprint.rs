@@ -86,6 +86,8 @@ impl Scene {
     /// The patch of surface around `hit` that `ray`'s neighbours `diff` meet, with the
     /// normal's change over it where `normals` asks (for differentials passed on by a mirror
     /// or glass). `None` where a neighbour runs along the surface.
+    /// (Always inlined: docs/perf-log.md, "The seed's hot helpers inlined".)
+    #[inline(always)]
     pub fn patch(
         &self,
         hit: &Hit,
@@ -160,7 +162,8 @@ impl Scene {
     /// further than `reach` (world units) from the hit: its one varying texture is its
     /// colour's, the object is placed without a transform (so its space is the world's),
     /// and that texture says so ([`crate::texture::Texture::flat_within`]).
-    #[inline]
+    /// (Always inlined: docs/perf-log.md, "The seed's hot helpers inlined".)
+    #[inline(always)]
     pub fn texture_flat_within(&self, hit: &Hit, reach: f32) -> bool {
         self.base_only[hit.material]
             && self.objects[hit.object].transform.is_none()
@@ -177,7 +180,8 @@ impl Scene {
     /// share its origin and turn by at most the camera's spread. Where that is inside one cell
     /// of a checker, the texture read at the point is what the footprint's filter gives, and
     /// the footprint is not worked out: most of a checker floor, seen or mirrored.
-    #[inline]
+    /// (Always inlined: docs/perf-log.md, "The seed's hot helpers inlined".)
+    #[inline(always)]
     pub fn footprint_is_flat(&self, ray: &Ray, hit: &Hit, diff: &RayDifferentials) -> bool {
         let c = ray.dir.dot(hit.normal).abs();
         let t = hit.t;

@@ -204,7 +204,8 @@ impl Scene {
     }
 
     /// [`Scene::closest_hit`] on every object but `skip` (see [`Scene::leaving`]).
-    #[inline]
+    /// (Always inlined: docs/perf-log.md, "The seed's hot helpers inlined".)
+    #[inline(always)]
     pub fn closest_hit_skipping(&self, ray: &Ray, t_max: f32, skip: Skip) -> Option<Hit> {
         if self.any_cutout {
             return self.closest_hit_past_holes(ray, t_max, skip, false);
@@ -348,6 +349,10 @@ impl Scene {
         self.emission_at(light, origin, -n, reach)
     }
 
+    /// Object `i`'s hit `h` of `ray` made whole: point, normals, material and texture point
+    /// (its uv where a texture reads it, or where `force_uv` asks).
+    /// (Always inlined: docs/perf-log.md, "The seed's hot helpers inlined".)
+    #[inline(always)]
     fn hit_details(&self, ray: &Ray, i: usize, h: ShapeHit, force_uv: bool) -> Hit {
         /// Out of line: few objects have a second uv set, and `hit_details` is inlined
         /// into every ray query, which this would otherwise keep the inliner from doing.
@@ -452,7 +457,8 @@ impl Scene {
 
     /// The base colour at a hit, read through `tex` (the hit's texture point, with its
     /// footprint where known): the material's texture, times a mesh's vertex colours.
-    #[inline]
+    /// (Always inlined: docs/perf-log.md, "The seed's hot helpers inlined".)
+    #[inline(always)]
     pub fn base_color(&self, hit: &Hit, tex: &TexturePoint) -> Color {
         let c = self.textures[self.material_at(hit).texture].eval(tex);
         match &self.objects[hit.object].shape {

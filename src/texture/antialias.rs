@@ -7,6 +7,8 @@
 /// tent's weights against the wave are the wave's second integral differenced,
 /// `(S(x + r) - 2 S(x) + S(x - r)) / r^2`, taken in `f64` near `x` (the second integral
 /// grows by 1 every period, so only `x` modulo 2 matters to the difference).
+/// (Always inlined: docs/perf-log.md, "The seed's hot helpers inlined".)
+#[inline(always)]
 pub fn square_wave(x: f32, r: f32) -> f32 {
     let (lo, hi) = ((x - r).floor(), (x + r).floor());
     if lo == hi || r.is_nan() || r <= 0.0 || !r.is_finite() {

@@ -297,6 +297,8 @@ impl ImageData {
 
     /// Bilinear lookup at texture coordinates (texel centres at `(i + 0.5) / size`),
     /// outside `[0, 1]` as `wrap` says on each axis.
+    /// (Always inlined: docs/perf-log.md, "The seed's hot helpers inlined".)
+    #[inline(always)]
     pub fn sample_bilinear(&self, uv: Vec2, wrap: Wraps) -> Color {
         let x = uv.x * self.width as f32 - 0.5;
         let y = uv.y * self.height as f32 - 0.5;

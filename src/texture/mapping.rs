@@ -144,7 +144,8 @@ impl Mapping {
     }
 
     /// Texture coordinates of `p`.
-    #[inline]
+    /// (Always inlined: docs/perf-log.md, "The seed's hot helpers inlined".)
+    #[inline(always)]
     pub fn uv(&self, p: &TexturePoint) -> Vec2 {
         match self {
             Mapping::Uv => p.uv,
