@@ -89,11 +89,14 @@ impl Intersect for Sphere {
         in_range(t0, t_max, 0).or_else(|| in_range(t1, t_max, 0))
     }
 
-    /// Outward normal and equirectangular uv (longitude 0 toward +z, north pole v = 0).
+    /// Outward normal and equirectangular uv (longitude 0 toward +z, north pole v = 0). The
+    /// normal is the offset from the centre over the radius, unit to within the rounding of
+    /// the hit point: no square root and division, which every ray that meets a sphere
+    /// waited on before its shading could start.
     fn surface(&self, p: Vec3A, _hit: &ShapeHit, want_uv: bool) -> Surface {
-        let n = (p - self.center).normalize_or(Vec3A::Y);
+        let n = (p - self.center) * (1.0 / self.radius);
         Surface {
-            point: self.center + n * self.radius,
+            point: p,
             normal: n,
             uv: if want_uv {
                 equirectangular_uv(n)
