@@ -10,8 +10,7 @@
 /// (Always inlined: docs/perf-log.md, "The seed's hot helpers inlined".)
 #[inline(always)]
 pub fn square_wave(x: f32, r: f32) -> f32 {
-    let (lo, hi) = ((x - r).floor(), (x + r).floor());
-    if lo == hi || r.is_nan() || r <= 0.0 || !r.is_finite() {
+    if within_cell(x, r) || r.is_nan() || r <= 0.0 || !r.is_finite() {
         // The filter stays inside one cell (or there is no filter): the cell's value.
         return if (x.floor() as i64) & 1 == 0 {
             1.0
@@ -30,8 +29,8 @@ pub fn square_wave(x: f32, r: f32) -> f32 {
 }
 
 /// Whether [`square_wave`] at `x` under a tent of radius at most `r` is the cell's value:
-/// the tent stays inside the cell of `x` (as `square_wave` tells, so that the two agree to
-/// the bit: a narrower tent's ends lie between these).
+/// the tent stays inside the cell of `x` (`square_wave`'s own test, so that the two agree
+/// to the bit: a narrower tent's ends lie between these).
 #[inline]
 pub fn within_cell(x: f32, r: f32) -> bool {
     r.is_finite() && (x - r).floor() == (x + r).floor()

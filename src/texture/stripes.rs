@@ -34,12 +34,12 @@ impl Paint for Stripes {
         )
     }
 
-    /// The mean of the two colours, whose bands are equal.
     /// The square wave across `u` (`filtered`'s) stays inside its band.
     fn flat_over(&self, uv: Vec2, r: Vec2) -> bool {
         antialias::within_cell(uv.x / self.width, r.x / self.width)
     }
 
+    /// The mean of the two colours, whose bands are equal.
     fn mean(&self) -> Color {
         (self.a + self.b) * 0.5
     }
