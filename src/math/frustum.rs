@@ -82,20 +82,37 @@ impl Frustum {
     pub fn excludes_8(&self, boxes: &[[[f32; 8]; 2]; 3]) -> u32 {
         let mut outside = 0u32;
         for (n, limit) in self.normals.iter().zip(self.limits) {
-            let mut along = [0.0f32; 8];
-            for (axis, sides) in boxes.iter().enumerate() {
-                let c = n[axis];
-                let far = &sides[(c > 0.0) as usize];
-                for (a, &f) in along.iter_mut().zip(far) {
-                    *a += c * f;
-                }
-            }
-            for (lane, a) in along.iter().enumerate() {
-                outside |= ((*a < limit) as u32) << lane;
-            }
+            // Per axis, the side of the boxes furthest along `n`, chosen once for all eight;
+            // then the eight lanes side by side (left to itself, the compiler vectorised over
+            // the four planes and gathered each box's coordinates, 3 % of the seed's time).
+            let [x, y, z] = [0, 1, 2].map(|axis| &boxes[axis][(n[axis] > 0.0) as usize]);
+            outside |= below_8(n, [x, y, z], limit);
         }
         outside
     }
+}
+
+/// A bit per lane where `n . (x, y, z)` (as `(n.x x + n.y y) + n.z z`) is under `limit`.
+#[cfg(all(target_arch = "x86_64", target_feature = "avx"))]
+#[inline(always)]
+fn below_8(n: &Vec3A, [x, y, z]: [&[f32; 8]; 3], limit: f32) -> u32 {
+    use safe_arch::{cmp_op, cmp_op_mask_m256, m256, move_mask_m256, set_splat_m256};
+    let lanes = |v: &[f32; 8]| m256::from_array(*v);
+    let along = set_splat_m256(n.x) * lanes(x)
+        + set_splat_m256(n.y) * lanes(y)
+        + set_splat_m256(n.z) * lanes(z);
+    let below = cmp_op_mask_m256::<{ cmp_op!(LessThanOrdered) }>(along, set_splat_m256(limit));
+    move_mask_m256(below) as u32
+}
+
+/// A bit per lane where `n . (x, y, z)` (as `(n.x x + n.y y) + n.z z`) is under `limit`.
+#[cfg(not(all(target_arch = "x86_64", target_feature = "avx")))]
+#[inline(always)]
+fn below_8(n: &Vec3A, [x, y, z]: [&[f32; 8]; 3], limit: f32) -> u32 {
+    (0..8).fold(0, |bits, lane| {
+        let along = n.x * x[lane] + n.y * y[lane] + n.z * z[lane];
+        bits | (((along < limit) as u32) << lane)
+    })
 }
 
 #[cfg(test)]

@@ -139,6 +139,26 @@ pub fn fresnel_dielectric(cos_i: f32, eta: f32) -> f32 {
     0.5 * (r_s * r_s + r_p * r_p)
 }
 
+/// [`fresnel_dielectric`] and [`refract`] of the unit direction `d` through the unit normal
+/// `n` at once, `cos_i` being `-d . n`: where that is in `[0, 1]` both come from one square
+/// root, to the bit what each gives alone (the reflectance, and the refracted direction
+/// `None` on total internal reflection).
+#[inline(always)]
+pub fn fresnel_refract(d: Vec3A, n: Vec3A, cos_i: f32, eta: f32) -> (f32, Option<Vec3A>) {
+    if !(0.0..=1.0).contains(&cos_i) {
+        return (fresnel_dielectric(cos_i, eta), refract(d, n, eta));
+    }
+    let sin2_t = eta * eta * (1.0 - cos_i * cos_i);
+    if sin2_t >= 1.0 {
+        return (1.0, None);
+    }
+    let cos_t = (1.0 - sin2_t).sqrt();
+    let r_s = (eta * cos_i - cos_t) / (eta * cos_i + cos_t);
+    let r_p = (cos_i - eta * cos_t) / (cos_i + eta * cos_t);
+    let dir = (eta * d + (eta * cos_i - cos_t) * n).normalize();
+    (0.5 * (r_s * r_s + r_p * r_p), Some(dir))
+}
+
 /// Asks the CPU to bring the cache line holding `value` into the cache, without waiting for
 /// it: a hint, with no effect on what the program computes. A no-op off x86-64.
 #[inline(always)]
@@ -206,6 +226,46 @@ mod tests {
         ));
         // Grazing incidence reflects everything.
         assert!(close(fresnel_dielectric(0.0, 1.0 / 1.5), 1.0, 1e-6));
+    }
+
+    /// Fresnel and refraction at once give what each gives alone, to the bit: entering and
+    /// leaving glass and diamond, at total internal reflection, and where a shading normal
+    /// faces away from the ray (`-d . n` outside `[0, 1]`).
+    #[test]
+    fn fresnel_refract_is_both_to_the_bit() {
+        let mut rng = Rng::new(29);
+        let (mut through, mut total, mut away) = (0, 0, 0);
+        for k in 0..20_000 {
+            let unit = |rng: &mut Rng| {
+                Vec3A::new(rng.next_f32(), rng.next_f32(), rng.next_f32()) * 2.0 - 1.0
+            };
+            let n = unit(&mut rng).normalize_or(Vec3A::Z);
+            let d = unit(&mut rng).normalize_or(-Vec3A::Z);
+            // Mostly toward the surface, a tenth away from it.
+            let d = if (d.dot(n) < 0.0) == (k % 10 != 0) {
+                d
+            } else {
+                -d
+            };
+            let eta = [1.0 / 1.5, 1.5, 1.0 / 2.42, 2.42][k % 4];
+            let cos_i = (-d).dot(n);
+            let (f, r) = fresnel_refract(d, n, cos_i, eta);
+            assert_eq!(f.to_bits(), fresnel_dielectric(cos_i, eta).to_bits());
+            let alone = refract(d, n, eta);
+            assert_eq!(
+                r.map(|v| v.to_array().map(f32::to_bits)),
+                alone.map(|v| v.to_array().map(f32::to_bits))
+            );
+            match (cos_i < 0.0, r) {
+                (true, _) => away += 1,
+                (false, Some(_)) => through += 1,
+                (false, None) => total += 1,
+            }
+        }
+        assert!(
+            through > 5_000 && total > 1_000 && away > 1_000,
+            "{through} {total} {away}"
+        );
     }
 
     /// Reflected directions are not normalised: from unit vectors they come out unit to a

@@ -12,7 +12,7 @@ use super::explain::{
 use super::{BatchStart, Integrator, RayStats};
 use crate::light::{Falloff, Light};
 use crate::math::{
-    Color, Ray, Vec3A, Wavelength, fresnel_dielectric, offset_ray_origin, reflect, refract,
+    Color, Ray, Vec3A, Wavelength, fresnel_refract, offset_ray_origin, reflect, refract,
 };
 use crate::scene::{Hit, RayDifferentials, Scene, Skip};
 use phong::phong_lobe;
@@ -473,13 +473,15 @@ impl Whitted {
         if t > 0.0 {
             let eta = if entering { 1.0 / ior } else { ior };
             let cos_i = view.dot(ns);
-            let fresnel = fresnel_dielectric(cos_i, eta);
+            let (fresnel, through) = fresnel_refract(d, ns, cos_i, eta);
             reflect_weight += Color::splat(t * fresnel);
             // A shading normal can bend a ray back out of the surface; the true normal
-            // cannot.
-            let refracted = refract(d, ns, eta)
-                .filter(|r| r.dot(n) < 0.0)
-                .or_else(|| refract(d, n, eta));
+            // cannot. (Not needed under total internal reflection.)
+            let refracted = || {
+                through
+                    .filter(|r| r.dot(n) < 0.0)
+                    .or_else(|| refract(d, n, eta))
+            };
             if R::ACTIVE {
                 let c = cos_i.clamp(0.0, 1.0);
                 let sin_i = (1.0 - c * c).max(0.0).sqrt();
@@ -494,7 +496,7 @@ impl Whitted {
                 });
             }
             if fresnel < 1.0
-                && let Some(dir) = refracted
+                && let Some(dir) = refracted()
             {
                 let below = offset_ray_origin(hit.point, -n);
                 // Inside a solid there is absorption (maybe none) and never fog.
