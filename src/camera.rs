@@ -4,7 +4,7 @@
 
 use crate::math::differential::Differentials;
 use crate::math::sampling::uniform_disk_concentric;
-use crate::math::{Frustum, Ray, Vec2, Vec3A};
+use crate::math::{FilmPlanes, Frustum, Ray, Vec2, Vec3A};
 
 /// How the film maps onto rays.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -313,6 +313,7 @@ impl Camera {
                 ortho: false,
                 forward: self.forward,
                 lens: lens.map(|l| (self.right * l.radius, self.up * l.radius, l.focus)),
+                planes: FilmPlanes::new(self.forward + across, per_x, per_y),
             },
             Projection::Orthographic { .. } => RasterCamera {
                 origin: self.position + across,
@@ -322,6 +323,8 @@ impl Camera {
                 ortho: true,
                 forward: self.forward,
                 lens: lens.map(|l| (self.right * l.radius, self.up * l.radius, l.focus)),
+                // Unread: an orthographic film has no pyramid.
+                planes: FilmPlanes::new(self.forward, per_x, per_y),
             },
         }
     }
@@ -346,6 +349,8 @@ pub struct RasterCamera {
     forward: Vec3A,
     /// The lens: its two radii (along the film's right and up) and the focus distance.
     lens: Option<(Vec3A, Vec3A, f32)>,
+    /// What every pixel's pyramid of rays shares ([`RasterCamera::film_frustum`]).
+    planes: FilmPlanes,
 }
 
 impl RasterCamera {
@@ -369,14 +374,7 @@ impl RasterCamera {
             return None;
         }
         let scale = scale.max(self.origin.abs().max_element());
-        Some(Frustum::through_film(
-            self.origin,
-            self.corner,
-            self.per_x,
-            self.per_y,
-            rect,
-            scale,
-        ))
+        Some(self.planes.frustum(self.origin, rect, scale))
     }
 
     /// Whether rays leave a lens (so each needs a point of it, [`RasterCamera::ray_lens`]).

@@ -31,31 +31,10 @@ impl Frustum {
         corner: Vec3A,
         per_x: Vec3A,
         per_y: Vec3A,
-        [x0, x1, y0, y1]: [f32; 4],
+        rect: [f32; 4],
         scale: f32,
     ) -> Self {
-        // The plane through the eye holding the film's column at `x` holds the directions
-        // `corner + per_x x` and `per_y`: its normal is their cross product, affine in `x`.
-        // Moving along `per_x` goes in on the left plane and out on the right one.
-        let (column, column_step) = (corner.cross(per_y), per_x.cross(per_y));
-        let (row, row_step) = (corner.cross(per_x), per_y.cross(per_x));
-        let sx = column.dot(per_x).signum();
-        let sy = row.dot(per_y).signum();
-        let normals = [
-            (column + column_step * x0) * sx,
-            (column + column_step * x1) * -sx,
-            (row + row_step * y0) * sy,
-            (row + row_step * y1) * -sy,
-        ];
-        // A product `n . p` of numbers up to `scale` in size is off by at most a few ulps of
-        // `|n|_1 scale`; a point must be further out than many times that to count.
-        let limits = normals.map(|n| n.dot(eye) - n.abs().element_sum() * scale * 1e-5);
-        Frustum {
-            eye,
-            normals,
-            limits,
-            lengths: normals.map(|n| n.length()),
-        }
+        FilmPlanes::new(corner, per_x, per_y).frustum(eye, rect, scale)
     }
 
     /// Whether `b` lies wholly outside (beyond one plane: a box that only misses the
@@ -89,6 +68,62 @@ impl Frustum {
             outside |= below_8(n, [x, y, z], limit);
         }
         outside
+    }
+}
+
+/// What a pinhole camera's film pyramids ([`Frustum::through_film`]) share, worked out once
+/// per render: the plane through the eye holding the film's column at `x` holds the
+/// directions `corner + per_x x` and `per_y`, so its normal is their cross product, affine
+/// in `x`; and the same for rows.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FilmPlanes {
+    /// The column plane's normal at `x = 0`, and its change per pixel.
+    column: Vec3A,
+    column_step: Vec3A,
+    /// The row plane's, at `y = 0` and per pixel.
+    row: Vec3A,
+    row_step: Vec3A,
+    /// The signs that turn the normals inward: moving along `per_x` goes in on the left
+    /// plane and out on the right one (and so for `per_y`).
+    sx: f32,
+    sy: f32,
+}
+
+impl FilmPlanes {
+    /// The planes of a film whose directions are `corner + per_x * x + per_y * y`.
+    pub fn new(corner: Vec3A, per_x: Vec3A, per_y: Vec3A) -> Self {
+        let (column, column_step) = (corner.cross(per_y), per_x.cross(per_y));
+        let (row, row_step) = (corner.cross(per_x), per_y.cross(per_x));
+        FilmPlanes {
+            column,
+            column_step,
+            row,
+            row_step,
+            sx: column.dot(per_x).signum(),
+            sy: row.dot(per_y).signum(),
+        }
+    }
+
+    /// The pyramid of rays from `eye` through the film's rectangle `[x0, x1, y0, y1]`, as
+    /// [`Frustum::through_film`].
+    #[inline]
+    pub fn frustum(&self, eye: Vec3A, [x0, x1, y0, y1]: [f32; 4], scale: f32) -> Frustum {
+        let (sx, sy) = (self.sx, self.sy);
+        let normals = [
+            (self.column + self.column_step * x0) * sx,
+            (self.column + self.column_step * x1) * -sx,
+            (self.row + self.row_step * y0) * sy,
+            (self.row + self.row_step * y1) * -sy,
+        ];
+        // A product `n . p` of numbers up to `scale` in size is off by at most a few ulps of
+        // `|n|_1 scale`; a point must be further out than many times that to count.
+        let limits = normals.map(|n| n.dot(eye) - n.abs().element_sum() * scale * 1e-5);
+        Frustum {
+            eye,
+            normals,
+            limits,
+            lengths: normals.map(|n| n.length()),
+        }
     }
 }
 

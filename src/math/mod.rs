@@ -22,7 +22,7 @@ pub mod wavelength;
 
 pub use aabb::Aabb;
 pub use frame::Frame;
-pub use frustum::Frustum;
+pub use frustum::{FilmPlanes, Frustum};
 pub use glam::{Vec2, Vec3, Vec3A};
 pub use offset::offset_ray_origin;
 pub use rng::{Rng, hash_seed};
