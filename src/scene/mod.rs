@@ -263,7 +263,19 @@ impl Scene {
                     Some((i, _)) if self.any_cutout && self.cutouts[*i] => {
                         self.closest_hit_past_holes(ray, f32::INFINITY, Skip::NONE, false)
                     }
-                    f => f.map(|(i, h)| self.hit_details(ray, i, h, false)),
+                    // Field by field from the packet's entry: a copy of the whole entry
+                    // loaded wider than the stores that had just made it, which a processor
+                    // cannot forward, and waited for them to reach the cache.
+                    Some((i, h)) => {
+                        let h = ShapeHit {
+                            t: h.t,
+                            part: h.part,
+                            prim: h.prim,
+                            bary: h.bary,
+                        };
+                        Some(self.hit_details(ray, *i, h, false))
+                    }
+                    None => None,
                 };
             }
         }
