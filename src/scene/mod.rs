@@ -259,13 +259,14 @@ impl Scene {
             let found = &mut found[..rays.len()];
             self.accel.closest_hits(&self.objects, rays, found, reach);
             for ((ray, f), o) in rays.iter().zip(found.iter()).zip(out) {
-                *o = match f {
+                match f {
                     Some((i, _)) if self.any_cutout && self.cutouts[*i] => {
-                        self.closest_hit_past_holes(ray, f32::INFINITY, Skip::NONE, false)
+                        *o = self.closest_hit_past_holes(ray, f32::INFINITY, Skip::NONE, false)
                     }
-                    // Field by field from the packet's entry: a copy of the whole entry
-                    // loaded wider than the stores that had just made it, which a processor
-                    // cannot forward, and waited for them to reach the cache.
+                    // Field by field from the packet's entry, and the hit made straight into
+                    // its slot: a whole entry, or a hit made aside, copied with loads wider
+                    // than the stores that had just made it, which a processor cannot
+                    // forward, waited for those stores to reach the cache.
                     Some((i, h)) => {
                         let h = ShapeHit {
                             t: h.t,
@@ -273,10 +274,10 @@ impl Scene {
                             prim: h.prim,
                             bary: h.bary,
                         };
-                        Some(self.hit_details(ray, *i, h, false))
+                        *o = Some(self.hit_details(ray, *i, h, false));
                     }
-                    None => None,
-                };
+                    None => *o = None,
+                }
             }
         }
     }
