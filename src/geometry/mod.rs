@@ -217,13 +217,15 @@ impl Shape {
         }
     }
 
-    /// [`Intersect::intersect`] of every shape but a mesh (`None` for a mesh): a jump to the
-    /// shape's test, with no frame of its own to set up. The one method whose arms are
-    /// written out here rather than forwarded by `closed_set!`: the forward's own match
-    /// holds the mesh walk, too large to inline here, which cost every analytic shape test a
-    /// call more (docs/perf-log.md). The match names every variant, so a new shape cannot be
-    /// left out of it.
-    #[inline(never)]
+    /// [`Intersect::intersect`] of every shape but a mesh (`None` for a mesh), inlined into
+    /// the object walk: called out of line, its hit came back through memory written field
+    /// by field, which the walk read back with wider loads that a processor cannot forward,
+    /// and every ray waited for those stores to reach the cache (docs/perf-log.md). The one
+    /// method whose arms are written out here rather than forwarded by `closed_set!`: the
+    /// forward's own match holds the mesh walk, too large to inline, which cost every
+    /// analytic shape test a call more. The match names every variant, so a new shape cannot
+    /// be left out of it.
+    #[inline(always)]
     fn intersect_analytic(&self, ray: &Ray, t_max: f32) -> Option<ShapeHit> {
         match self {
             Shape::Sphere(s) => s.intersect(ray, t_max),
