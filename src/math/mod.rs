@@ -120,7 +120,13 @@ pub fn refract(d: Vec3A, n: Vec3A, eta: f32) -> Option<Vec3A> {
         return None;
     }
     let cos_t = (1.0 - sin2_t).sqrt();
-    Some((eta * d + (eta * cos_i - cos_t) * n).normalize())
+    Some(refracted(d, n, cos_i, cos_t, eta))
+}
+
+/// The refracted direction of `d` through `n` once both cosines are known.
+#[inline(always)]
+fn refracted(d: Vec3A, n: Vec3A, cos_i: f32, cos_t: f32, eta: f32) -> Vec3A {
+    (eta * d + (eta * cos_i - cos_t) * n).normalize()
 }
 
 /// Unpolarised Fresnel reflectance of a dielectric boundary, exactly (not Schlick's
@@ -132,7 +138,12 @@ pub fn fresnel_dielectric(cos_i: f32, eta: f32) -> f32 {
     if sin2_t >= 1.0 {
         return 1.0;
     }
-    let cos_t = (1.0 - sin2_t).sqrt();
+    fresnel_of_cosines(cos_i, (1.0 - sin2_t).sqrt(), eta)
+}
+
+/// Fresnel's reflectance once both cosines are known.
+#[inline(always)]
+fn fresnel_of_cosines(cos_i: f32, cos_t: f32, eta: f32) -> f32 {
     // With n_i = eta, n_t = 1 (only the ratio matters).
     let r_s = (eta * cos_i - cos_t) / (eta * cos_i + cos_t);
     let r_p = (cos_i - eta * cos_t) / (cos_i + eta * cos_t);
@@ -153,10 +164,10 @@ pub fn fresnel_refract(d: Vec3A, n: Vec3A, cos_i: f32, eta: f32) -> (f32, Option
         return (1.0, None);
     }
     let cos_t = (1.0 - sin2_t).sqrt();
-    let r_s = (eta * cos_i - cos_t) / (eta * cos_i + cos_t);
-    let r_p = (cos_i - eta * cos_t) / (cos_i + eta * cos_t);
-    let dir = (eta * d + (eta * cos_i - cos_t) * n).normalize();
-    (0.5 * (r_s * r_s + r_p * r_p), Some(dir))
+    (
+        fresnel_of_cosines(cos_i, cos_t, eta),
+        Some(refracted(d, n, cos_i, cos_t, eta)),
+    )
 }
 
 /// Asks the CPU to bring the cache line holding `value` into the cache, without waiting for
