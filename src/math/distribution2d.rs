@@ -24,8 +24,11 @@ pub struct Distribution2d {
     /// Row by row, `width + 1` numbers each: the probability of the cells before each cell
     /// within the row (0 first, 1 last).
     cdf: Vec<f32>,
-    /// Row by row, the guide of each row's stretch of `cdf`.
+    /// Row by row, the guide of each row's stretch of `cdf`, in [`ROW_BUCKETS`] buckets
+    /// (fewer for a narrower row).
     guide: Vec<u16>,
+    /// The buckets of each row's guide.
+    buckets: usize,
 }
 
 /// Appends to `cdf` the `n + 1` cumulative probabilities of `weights` (0 first, 1 last).
@@ -55,24 +58,42 @@ fn push_cumulative(cdf: &mut Vec<f32>, weights: &[f32]) -> f64 {
     total
 }
 
-/// Appends the guide of `c` (`n + 1` cumulative probabilities) to `guide`: entry `k` is the
-/// last piece `i` whose `c[i]` is at most `k / n`, where the search for a `u` in that bucket
-/// starts. Nothing for tables too long for `u16` (searched whole).
-fn push_guide(guide: &mut Vec<u16>, c: &[f32]) {
+/// How many buckets a row's guide has at most. A row's guide narrows a search to a stretch
+/// of about `width / ROW_BUCKETS` cells of even weight: a few cache lines, which
+/// [`Distribution2d::sample`] asks for at once. A guide of one bucket per cell would narrow
+/// it to one line, but its own table (two bytes a cell) then misses the cache as often as
+/// the `cdf` it points into, one miss after the other (docs/perf-log.md).
+const ROW_BUCKETS: usize = 64;
+
+/// Appends the guide of `c` (`n + 1` cumulative probabilities) in `m` buckets to `guide`:
+/// entry `k` is the last piece `i` whose `c[i]` is at most `k / m`, where the search for a
+/// `u` in that bucket starts. Nothing for tables too long for `u16` (searched whole).
+fn push_guide(guide: &mut Vec<u16>, c: &[f32], m: usize) {
     let n = c.len() - 1;
     if n > u16::MAX as usize + 1 {
         return;
     }
-    // `k / n` rises with `k`, so the piece it falls in only moves on: one walk along `c`
-    // finds every entry (the last `i` with `c[i] <= k / n`, at most `n - 1`).
+    // `k / m` rises with `k`, so the piece it falls in only moves on: one walk along `c`
+    // finds every entry (the last `i` with `c[i] <= k / m`, at most `n - 1`).
     let mut i = 0;
-    for k in 0..n {
-        let x = k as f32 / n as f32;
+    for k in 0..m {
+        let x = k as f32 / m as f32;
         while i + 1 < c.len() && c[i + 1] <= x {
             i += 1;
         }
         guide.push(i.min(n - 1) as u16);
     }
+}
+
+/// The stretch of `c` (`n + 1` cumulative probabilities) that guide `g` (of `g.len()`
+/// buckets, not empty) gives `u` (in `[0, 1)`) to search: its first and last entries.
+#[inline]
+fn stretch(n: usize, g: &[u16], u: f32) -> (usize, usize) {
+    let m = g.len();
+    let k = ((u * m as f32) as usize).min(m - 1);
+    let lo = g[k] as usize;
+    let hi = if k + 1 < m { g[k + 1] as usize + 1 } else { n };
+    (lo, hi)
 }
 
 /// The piece of `c` (`n + 1` cumulative probabilities, with guide `g` or none) that `u`
@@ -82,9 +103,7 @@ fn push_guide(guide: &mut Vec<u16>, c: &[f32]) {
 fn find(c: &[f32], g: &[u16], u: f32) -> usize {
     let n = c.len() - 1;
     if !g.is_empty() {
-        let k = ((u * n as f32) as usize).min(n - 1);
-        let lo = g[k] as usize;
-        let hi = if k + 1 < n { g[k + 1] as usize + 1 } else { n };
+        let (lo, hi) = stretch(n, g, u);
         // Rounding may put `u` just outside its bucket's range: then the whole table.
         if c[lo] <= u && c[hi] > u {
             return lo + c[lo..=hi].partition_point(|&v| v <= u) - 1;
@@ -114,20 +133,21 @@ impl Distribution2d {
     pub fn new(weights: &[f32], width: usize, height: usize) -> Self {
         assert_eq!(weights.len(), width * height, "one weight per cell");
         let w = width.max(1);
+        let buckets = w.min(ROW_BUCKETS);
         let mut cdf = Vec::with_capacity(height * (w + 1));
-        let mut guide = Vec::with_capacity(height * w);
+        let mut guide = Vec::with_capacity(height * buckets);
         let mut totals = Vec::with_capacity(height);
         for row in weights.chunks_exact(w) {
             // A row of no weight is never chosen; its cells are made alike all the same.
             let start = cdf.len();
             totals.push(push_cumulative(&mut cdf, row) as f32);
-            push_guide(&mut guide, &cdf[start..]);
+            push_guide(&mut guide, &cdf[start..], buckets);
         }
         // (A grid of no columns has no rows either.)
         let (mut row_cdf, mut row_guide) = (Vec::new(), Vec::new());
         if !totals.is_empty() {
             push_cumulative(&mut row_cdf, &totals);
-            push_guide(&mut row_guide, &row_cdf);
+            push_guide(&mut row_guide, &row_cdf, totals.len());
         }
         Distribution2d {
             width: w,
@@ -136,17 +156,18 @@ impl Distribution2d {
             row_guide,
             cdf,
             guide,
+            buckets,
         }
     }
 
     /// Row `r`'s cumulative probabilities and guide.
     #[inline]
     fn row_tables(&self, r: usize) -> (&[f32], &[u16]) {
-        let w = self.width;
+        let (w, m) = (self.width, self.buckets);
         let guide = if self.guide.is_empty() {
             &[][..]
         } else {
-            &self.guide[r * w..(r + 1) * w]
+            &self.guide[r * m..(r + 1) * m]
         };
         (&self.cdf[r * (w + 1)..(r + 1) * (w + 1)], guide)
     }
@@ -187,14 +208,15 @@ mod tests {
     use super::*;
 
     /// The guide's one walk gives every entry the binary search gives: the last piece whose
-    /// start is at most `k / n`, on tables with runs of empty pieces, one heavy piece, and
-    /// none at all.
+    /// start is at most `k / m`, on tables with runs of empty pieces, one heavy piece, and
+    /// none at all, in as many buckets as pieces and in fewer; and a search through it finds
+    /// the piece a search of the whole table finds.
     #[test]
     fn the_guide_is_the_last_piece_starting_at_or_before_each_bucket() {
         let mut rng = crate::math::Rng::new(11);
-        let mut tables = 0;
+        let (mut tables, mut finds) = (0, 0);
         for case in 0..200 {
-            let n = 1 + case % 37;
+            let n: usize = 1 + case % 37;
             let weights: Vec<f32> = (0..n)
                 .map(|i| match case % 4 {
                     0 => rng.next_f32(),
@@ -207,17 +229,27 @@ mod tests {
                 .collect();
             let mut c = vec![];
             push_cumulative(&mut c, &weights);
-            let mut guide = vec![];
-            push_guide(&mut guide, &c);
-            assert_eq!(guide.len(), n);
-            for (k, &g) in guide.iter().enumerate() {
-                let x = k as f32 / n as f32;
-                let searched = (c.partition_point(|&v| v <= x).saturating_sub(1)).min(n - 1);
-                assert_eq!(g as usize, searched, "table {case}, bucket {k}: {c:?}");
+            for m in [n, n.div_ceil(3), n.min(4)] {
+                let mut guide = vec![];
+                push_guide(&mut guide, &c, m);
+                assert_eq!(guide.len(), m);
+                for (k, &g) in guide.iter().enumerate() {
+                    let x = k as f32 / m as f32;
+                    let searched = (c.partition_point(|&v| v <= x).saturating_sub(1)).min(n - 1);
+                    assert_eq!(
+                        g as usize, searched,
+                        "table {case}, bucket {k} of {m}: {c:?}"
+                    );
+                }
+                for _ in 0..20 {
+                    let u = rng.next_f32();
+                    assert_eq!(find(&c, &guide, u), find(&c, &[], u), "table {case}, {u}");
+                    finds += 1;
+                }
+                tables += 1;
             }
-            tables += 1;
         }
-        assert_eq!(tables, 200);
+        assert_eq!((tables, finds), (600, 12_000));
     }
 
     /// Points follow the density, cell by cell (a grid of uneven weights with empty cells
