@@ -3,6 +3,7 @@
 
 pub mod aov;
 mod bdpt;
+mod escape;
 pub mod explain;
 mod light_tracer;
 mod path;
@@ -10,6 +11,7 @@ pub mod path_explain;
 mod whitted;
 
 pub use bdpt::{Bdpt, Paths, Strategy};
+pub use escape::{Escape, Traced};
 pub use light_tracer::{LightTracer, LightView};
 pub use path::Path;
 pub use whitted::Whitted;
@@ -97,6 +99,21 @@ pub trait Integrator: Sync {
         let _ = sampler;
         self.radiance(scene, ray, rays)
     }
+
+    /// [`Integrator::radiance_sampled`], perhaps unfinished ([`Traced::resolve`] gives the
+    /// colour): the path tracer hands back a path that left the scene before looking up
+    /// the environment map's light, so that the caller may trace the next sample while the
+    /// map's memory comes in.
+    #[inline]
+    fn radiance_deferred(
+        &self,
+        scene: &Scene,
+        ray: &Ray,
+        sampler: &mut Sampler,
+        rays: &mut RayStats,
+    ) -> Traced {
+        Traced::Done(self.radiance_sampled(scene, ray, sampler, rays))
+    }
 }
 
 impl Integrator for Path {
@@ -121,6 +138,16 @@ impl Integrator for Path {
         rays: &mut RayStats,
     ) -> Color {
         Path::radiance(self, scene, ray, sampler, rays)
+    }
+
+    fn radiance_deferred(
+        &self,
+        scene: &Scene,
+        ray: &Ray,
+        sampler: &mut Sampler,
+        rays: &mut RayStats,
+    ) -> Traced {
+        Path::radiance_deferred(self, scene, ray, sampler, rays)
     }
 }
 

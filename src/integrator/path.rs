@@ -12,12 +12,13 @@
 //! Beer-Lambert; Whitted's ambient term and fog are not read.
 
 use super::RayStats;
+use super::escape::{Escape, Traced};
 use super::path_explain::{
     BounceRecord, EmissionRecord, LightSampleRecord, NoPathRecord, PathEnd, PathRecorder,
     RouletteRecord, VertexRecord,
 };
 use crate::bsdf::{Bsdf, BsdfSample};
-use crate::light::{Falloff, Light};
+use crate::light::{Falloff, Light, Toward};
 use crate::lpe::LightFrom;
 use crate::math::differential::Differentials;
 use crate::math::distribution::power_heuristic;
@@ -66,6 +67,19 @@ impl Path {
         self.trace(scene, ray, sampler, rays, &mut NoPathRecord)
     }
 
+    /// [`Path::radiance`], or, for a path that leaves the scene under an environment map,
+    /// the path unfinished with the map's memory asked for ([`Traced`]).
+    #[inline]
+    pub fn radiance_deferred(
+        &self,
+        scene: &Scene,
+        ray: &Ray,
+        sampler: &mut Sampler,
+        rays: &mut RayStats,
+    ) -> Traced {
+        self.trace_deferring::<_, true>(scene, ray, sampler, rays, &mut NoPathRecord)
+    }
+
     /// [`Path::radiance`], reporting the path to `rec` (`snell explain`).
     pub fn trace<R: PathRecorder>(
         &self,
@@ -75,6 +89,21 @@ impl Path {
         rays: &mut RayStats,
         rec: &mut R,
     ) -> Color {
+        self.trace_deferring::<R, false>(scene, ray, sampler, rays, rec)
+            .resolve(scene)
+    }
+
+    /// [`Path::trace`]; with `DEFER`, a path that leaves the scene under an environment
+    /// map (and reports nothing) comes back unfinished.
+    #[inline(always)]
+    fn trace_deferring<R: PathRecorder, const DEFER: bool>(
+        &self,
+        scene: &Scene,
+        ray: &Ray,
+        sampler: &mut Sampler,
+        rays: &mut RayStats,
+        rec: &mut R,
+    ) -> Traced {
         let settings = &scene.settings.integrator;
         let max_depth = scene.settings.max_depth;
         let mut l = Color::ZERO;
@@ -100,7 +129,22 @@ impl Path {
         loop {
             rays.deepest = rays.deepest.max(depth);
             let Some(mut hit) = scene.closest_hit_skipping(&ray, f32::INFINITY, skip) else {
-                let (le, environment) = self.escaped(scene, &ray, depth, specular, prev_pdf);
+                if DEFER
+                    && !R::EVENTS
+                    && !R::ACTIVE
+                    && let Some(toward) = scene.environment().and_then(|e| e.prefetch(ray.dir))
+                {
+                    return Traced::Escaping(Escape {
+                        gathered: l,
+                        beta,
+                        toward,
+                        depth,
+                        specular,
+                        prev_pdf,
+                    });
+                }
+                let (le, environment) =
+                    self.escaped(scene, ray.dir.into(), depth, specular, prev_pdf);
                 let c = beta * le;
                 l += c;
                 if R::EVENTS {
@@ -290,14 +334,20 @@ impl Path {
                 rec.vertex(r);
             }
         }
-        let clamped = match settings.clamp {
-            Some(c) => l.min(Color::splat(c)),
-            None => l,
-        };
+        let clamped = Self::clamped(scene, l);
         if R::EVENTS {
             rec.finished(l, clamped);
         }
-        clamped
+        Traced::Done(clamped)
+    }
+
+    /// A sample's light `l` after the integrator's clamp, if any.
+    #[inline]
+    pub(super) fn clamped(scene: &Scene, l: Color) -> Color {
+        match scene.settings.integrator.clamp {
+            Some(c) => l.min(Color::splat(c)),
+            None => l,
+        }
     }
 
     /// The differentials of the ray a delta lobe sent on in direction `dir` from `hit`,
@@ -333,10 +383,10 @@ impl Path {
     /// against light sampling, unless the bounce before was a delta or the camera) or, where
     /// there is none or the camera may not see it, the background.
     /// Whether it was the environment (`true`) or the background comes with it.
-    fn escaped(
+    pub(super) fn escaped(
         &self,
         scene: &Scene,
-        ray: &Ray,
+        toward: Toward,
         depth: u32,
         specular: bool,
         prev_pdf: f32,
@@ -344,9 +394,9 @@ impl Path {
         match (scene.environment(), scene.environment_light) {
             (Some(env), Some(i)) if env.visible || depth > 1 => {
                 if specular {
-                    return (env.radiance(ray.dir), true);
+                    return (env.radiance_toward(toward), true);
                 }
-                let (le, pdf) = env.radiance_pdf(ray.dir);
+                let (le, pdf) = env.radiance_pdf_toward(toward);
                 let p_light = scene.light_sampler.probability(i) * pdf;
                 (le * power_heuristic(prev_pdf, p_light), true)
             }

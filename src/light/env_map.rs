@@ -15,6 +15,12 @@ use crate::texture::ImageData;
 use std::f32::consts::PI;
 use std::sync::Arc;
 
+/// How many texels a map has at most for its lookups to stay in a core's cache (its
+/// tables take about 10 bytes a texel: 2.5 MiB here, past a 2 MiB L2). A lookup in a
+/// larger map waits on memory; one in a smaller map has nothing to gain from asking for
+/// its memory ahead (docs/perf-log.md).
+const CACHED_TEXELS: usize = 1 << 18;
+
 /// An equirectangular image, its placement, and the density it is sampled with.
 #[derive(Clone, Debug)]
 pub struct EnvironmentMap {
@@ -152,14 +158,16 @@ impl EnvironmentMap {
         uv_of(self.rotation.vector_to_object(world).normalize_or_zero())
     }
 
+    /// The four texels the bilinear lookup at `uv` blends (columns `xs`, rows `ys`) and
+    /// its weights along each axis; `None` off the image.
     #[inline]
-    fn radiance_at(&self, uv: Vec2) -> Color {
+    fn footprint(&self, uv: Vec2) -> Option<([i64; 2], [i64; 2], f32, f32)> {
         use crate::texture::Wrap;
         let (w, h) = (self.image.width() as i64, self.image.height() as i64);
         let x = uv.x * w as f32 - 0.5;
         let y = uv.y * h as f32 - 0.5;
         if !(x.is_finite() && y.is_finite()) || w == 0 || h == 0 {
-            return Color::ZERO;
+            return None;
         }
         let (x0, y0) = (x.floor(), y.floor());
         let (fx, fy) = (x - x0, y - y0);
@@ -173,6 +181,41 @@ impl EnvironmentMap {
             Wrap::Clamp.index(y0, h),
             Wrap::Clamp.index(y0.saturating_add(1), h),
         ];
+        Some((xs, ys, fx, fy))
+    }
+
+    /// Asks for the cache lines of the texels a lookup at `uv` would read, without waiting.
+    #[inline]
+    fn prefetch(&self, uv: Vec2) {
+        if let Some((xs, ys, _, _)) = self.footprint(uv) {
+            let w = self.image.width() as i64;
+            for y in ys {
+                crate::math::prefetch(&self.texels[(y * w + xs[0]) as usize]);
+                crate::math::prefetch(&self.texels[(y * w + xs[1]) as usize]);
+            }
+        }
+    }
+
+    /// Whether the map is too large for its lookups to stay in the cache.
+    #[inline]
+    pub(crate) fn is_large(&self) -> bool {
+        self.texels.len() > CACHED_TEXELS
+    }
+
+    /// Asks for the memory a lookup at image coordinates `uv` reads (its texels, and its
+    /// density's entry), without waiting.
+    #[inline]
+    pub(crate) fn prefetch_uv(&self, uv: Vec2) {
+        self.prefetch(uv);
+        self.density.prefetch(uv);
+    }
+
+    #[inline]
+    fn radiance_at(&self, uv: Vec2) -> Color {
+        let w = self.image.width() as i64;
+        let Some((xs, ys, fx, fy)) = self.footprint(uv) else {
+            return Color::ZERO;
+        };
         let texel = |x: i64, y: i64| {
             let t = self.texels[(y * w + x) as usize];
             Color::new(t[0].to_f32(), t[1].to_f32(), t[2].to_f32())
@@ -196,14 +239,25 @@ impl EnvironmentMap {
     /// Radiance from world direction `world`.
     #[inline]
     pub(crate) fn radiance(&self, world: Vec3A) -> Color {
-        self.radiance_at(self.uv(world))
+        self.radiance_uv(self.uv(world))
+    }
+
+    /// Radiance from image coordinates `uv`.
+    #[inline]
+    pub(crate) fn radiance_uv(&self, uv: Vec2) -> Color {
+        self.radiance_at(uv)
     }
 
     /// Radiance from world direction `world` and the density of [`EnvironmentMap::sample`]
     /// for it.
     #[inline]
     pub(crate) fn radiance_pdf(&self, world: Vec3A) -> (Color, f32) {
-        let uv = self.uv(world);
+        self.radiance_pdf_uv(self.uv(world))
+    }
+
+    /// [`EnvironmentMap::radiance_pdf`] at image coordinates `uv`.
+    #[inline]
+    pub(crate) fn radiance_pdf_uv(&self, uv: Vec2) -> (Color, f32) {
         (self.radiance_at(uv), self.pdf_at(uv))
     }
 
@@ -214,7 +268,10 @@ impl EnvironmentMap {
 
     /// A direction in proportion to the image's brightness.
     pub(crate) fn sample(&self, u: Vec2) -> Option<EnvironmentSample> {
-        let (uv, pdf_uv) = self.density.sample(u)?;
+        // The texels the sample will read are asked for while its column is searched for.
+        let (uv, pdf_uv) = self
+            .density
+            .sample_hinting(u, |guess| self.prefetch(guess))?;
         let (local, sin) = direction_of(uv);
         if sin <= 0.0 {
             return None;

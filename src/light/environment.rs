@@ -18,6 +18,22 @@ pub struct Environment {
     pub visible: bool,
 }
 
+/// A direction toward the environment (unit, world space), with its image coordinates in
+/// the environment's map where they were found already.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Toward {
+    /// The direction.
+    pub dir: Vec3A,
+    /// Its image coordinates, if found ([`Environment::prefetch`]).
+    pub uv: Option<Vec2>,
+}
+
+impl From<Vec3A> for Toward {
+    fn from(dir: Vec3A) -> Self {
+        Toward { dir, uv: None }
+    }
+}
+
 /// Where the environment's radiance comes from.
 #[derive(Clone, Debug)]
 pub enum EnvironmentSource {
@@ -71,6 +87,40 @@ impl Environment {
             EnvironmentSource::Constant(c) => (*c, crate::math::sampling::UNIFORM_SPHERE_PDF),
             EnvironmentSource::Map(m) => m.radiance_pdf(dir),
             EnvironmentSource::Sky(s) => s.radiance_pdf(dir),
+        }
+    }
+
+    /// Asks for the memory a lookup of direction `dir` will read (a large image's texels
+    /// and density), without waiting for it: the direction with the image coordinates
+    /// found on the way, or `None` where there was nothing to ask for (a small image, the
+    /// sky's among them, stays in the cache).
+    #[inline]
+    pub fn prefetch(&self, dir: Vec3A) -> Option<Toward> {
+        match &self.source {
+            EnvironmentSource::Map(m) if m.is_large() => {
+                let uv = m.uv(dir);
+                m.prefetch_uv(uv);
+                Some(Toward { dir, uv: Some(uv) })
+            }
+            _ => None,
+        }
+    }
+
+    /// [`Environment::radiance`] toward `t`.
+    #[inline]
+    pub fn radiance_toward(&self, t: Toward) -> Color {
+        match (&self.source, t.uv) {
+            (EnvironmentSource::Map(m), Some(uv)) => m.radiance_uv(uv),
+            _ => self.radiance(t.dir),
+        }
+    }
+
+    /// [`Environment::radiance_pdf`] toward `t`.
+    #[inline]
+    pub fn radiance_pdf_toward(&self, t: Toward) -> (Color, f32) {
+        match (&self.source, t.uv) {
+            (EnvironmentSource::Map(m), Some(uv)) => m.radiance_pdf_uv(uv),
+            _ => self.radiance_pdf(t.dir),
         }
     }
 

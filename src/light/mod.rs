@@ -17,7 +17,7 @@ mod spot;
 
 pub use area::{AreaLight, Emitter, ObjectLights};
 pub use directional::DirectionalLight;
-pub use environment::{Environment, EnvironmentMap, EnvironmentSample, EnvironmentSource};
+pub use environment::{Environment, EnvironmentMap, EnvironmentSample, EnvironmentSource, Toward};
 pub use point::PointLight;
 pub use select::{LightChoice, LightSampler};
 pub use spot::SpotLight;

@@ -174,6 +174,16 @@ impl Distribution2d {
 
     /// A point of the square chosen by `u`, with its density; `None` for an empty grid.
     pub fn sample(&self, u: Vec2) -> Option<(Vec2, f32)> {
+        self.sample_hinting(u, |_| ())
+    }
+
+    /// [`Distribution2d::sample`], telling `hint` first where the point will be found: its
+    /// row's place exactly, its column's as the guide's stretch suggests (where the
+    /// cumulative probabilities rise evenly through it). The search's own memory is asked
+    /// for at once too, so that both wait on the cache together rather than one after the
+    /// other; `hint` may ask for what the caller will read at the point.
+    #[inline]
+    pub fn sample_hinting(&self, u: Vec2, hint: impl FnOnce(Vec2)) -> Option<(Vec2, f32)> {
         if self.height == 0 {
             return None;
         }
@@ -182,8 +192,32 @@ impl Distribution2d {
         let (y, py) = place(&self.row_cdf, r, uy);
         let (c, g) = self.row_tables(r);
         let ux = u.x.clamp(0.0, 1.0 - f32::EPSILON);
+        if !g.is_empty() {
+            let (n, m) = (c.len() - 1, g.len());
+            let (lo, hi) = stretch(n, g, ux);
+            // The stretch's cache lines (a few for a row of even weights; a long stretch
+            // is a row's faint part, rarely drawn: its first lines).
+            for i in (lo..=hi).step_by(16).take(4) {
+                super::prefetch(&c[i]);
+            }
+            let along = ux * m as f32 - ((ux * m as f32) as usize).min(m - 1) as f32;
+            let guess = lo as f32 + along * (hi - lo) as f32;
+            hint(Vec2::new(guess / n as f32, y));
+        }
         let (x, px) = place(c, find(c, g, ux), ux);
         Some((Vec2::new(x, y), py * px))
+    }
+
+    /// Asks for the memory [`Distribution2d::pdf`] at `p` reads, without waiting.
+    #[inline]
+    pub fn prefetch(&self, p: Vec2) {
+        if self.height == 0 {
+            return;
+        }
+        let (h, w) = (self.height, self.width);
+        let r = ((p.y * h as f32) as usize).min(h - 1);
+        let i = ((p.x * w as f32) as usize).min(w - 1);
+        super::prefetch(&self.cdf[r * (w + 1) + i]);
     }
 
     /// The density of [`Distribution2d::sample`] at `p`.

@@ -6,7 +6,7 @@
 use super::{BadSample, BadSamples};
 use crate::camera::RasterCamera;
 use crate::film::FilmPixel;
-use crate::integrator::{Integrator, RayStats};
+use crate::integrator::{Escape, Integrator, RayStats, Traced};
 use crate::math::{Color, Ray, Rng, Vec2, Vec3A, hash_seed};
 use crate::sampler::Sampler;
 use crate::scene::{Reach, RenderSettings, Scene};
@@ -193,7 +193,7 @@ impl PixelJob<'_> {
             y,
             samples,
             (pixel, rays, bad),
-            |ray, sampler, rays| integrator.radiance_sampled(scene, ray, sampler, rays),
+            |ray, sampler, rays| integrator.radiance_deferred(scene, ray, sampler, rays),
             |_| {},
         );
     }
@@ -202,25 +202,28 @@ impl PixelJob<'_> {
     /// ray, the sampler started at the sample, and the ray counts), and `kept(sign)` called
     /// after each sample whose colour is added to the pixel (finite), with the sign of its
     /// filter weight: for a render that gathers more of each sample than its colour.
-    pub fn add_samples_with(
+    ///
+    /// A sample `trace` hands back unfinished ([`Traced::Escaping`]) is finished after the
+    /// next sample is traced, while its memory comes in; samples are still added to the
+    /// pixel in index order, and one that comes back finished is added (and `kept` called)
+    /// before the next is traced.
+    pub fn add_samples_with<T>(
         &self,
         x: u32,
         y: u32,
         samples: Range<u32>,
         (pixel, rays, bad): (&mut FilmPixel, &mut RayStats, &mut BadSamples),
-        mut trace: impl FnMut(&Ray, &mut Sampler, &mut RayStats) -> Color,
+        mut trace: impl FnMut(&Ray, &mut Sampler, &mut RayStats) -> T,
         mut kept: impl FnMut(f32),
-    ) {
+    ) where
+        T: Into<Traced>,
+    {
         let (scene, camera) = (self.scene, self.camera);
         let s = &scene.settings;
         let mut sampler = Sampler::new(s.integrator.sampler, s.seed);
         let signed = s.filter.has_negative_lobes();
-        for index in samples {
-            let (px, py, filter_sign) = start_sample(s, &mut sampler, x, y, index);
-            let sign = if signed { filter_sign } else { 1.0 };
-            let ray = camera_ray(camera, &mut sampler, px, py);
-            let c = trace(&ray, &mut sampler, rays);
-            match checked(scene, c, &ray, x, y, bad) {
+        let mut add = |c: Color, ray: &Ray, sign: f32, bad: &mut BadSamples| {
+            match checked(scene, c, ray, x, y, bad) {
                 Some(c) => {
                     pixel.add(c, sign);
                     kept(sign);
@@ -229,6 +232,24 @@ impl PixelJob<'_> {
                 // in its value.
                 None => pixel.add_sums(Color::ZERO, 0.0, Color::ZERO, 0.0, 1),
             }
+        };
+        // The sample traced before this one, if it came back unfinished.
+        let mut waiting: Option<(Escape, Ray, f32)> = None;
+        for index in samples {
+            let (px, py, filter_sign) = start_sample(s, &mut sampler, x, y, index);
+            let sign = if signed { filter_sign } else { 1.0 };
+            let ray = camera_ray(camera, &mut sampler, px, py);
+            let traced = trace(&ray, &mut sampler, rays).into();
+            if let Some((e, before, sign)) = waiting.take() {
+                add(Traced::Escaping(e).resolve(scene), &before, sign, bad);
+            }
+            match traced {
+                Traced::Done(c) => add(c, &ray, sign, bad),
+                Traced::Escaping(e) => waiting = Some((e, ray, sign)),
+            }
+        }
+        if let Some((e, before, sign)) = waiting {
+            add(Traced::Escaping(e).resolve(scene), &before, sign, bad);
         }
     }
 }
