@@ -151,15 +151,20 @@ impl ImageData {
                 img.color(),
                 ::image::ColorType::Rgb32F | ::image::ColorType::Rgba32F
             );
-            Texels::Floats(
-                img.to_rgb32f()
-                    .pixels()
-                    .map(|p| match space {
-                        ColorSpace::Srgb if !float => p.0.map(srgb_to_linear),
-                        _ => p.0,
-                    })
-                    .collect(),
-            )
+            // RGB floats already: their buffer, reinterpreted in place (a large map's copy
+            // was a fresh buffer the size of the image, and the kernel's work of handing
+            // it out cost more than the copy).
+            let floats: Vec<f32> = img.into_rgb32f().into_raw();
+            let mut texels: Vec<[f32; 3]> = bytemuck::allocation::try_cast_vec(floats)
+                .unwrap_or_else(|(_, floats)| {
+                    floats.chunks_exact(3).map(|p| [p[0], p[1], p[2]]).collect()
+                });
+            if space == ColorSpace::Srgb && !float {
+                for p in &mut texels {
+                    *p = p.map(srgb_to_linear);
+                }
+            }
+            Texels::Floats(texels)
         };
         ImageData {
             width,
@@ -514,6 +519,46 @@ mod tests {
             }
         }
         assert_eq!(checked, 2 * (6 + 256 + 2 * 255 + 100_001 + 3 * (STEPS + 1)));
+    }
+
+    /// Deep images keep their values: RGB floats (their buffer taken over), RGBA floats
+    /// (alpha dropped), and 16-bit RGB, linear or decoded from sRGB; every texel checked.
+    #[test]
+    fn float_and_16_bit_images_keep_their_values() {
+        use ::image::{DynamicImage, ImageBuffer, Rgb, Rgba};
+        let (w, h) = (5u32, 3u32);
+        let v = |x: u32, y: u32, k: u32| (x * 7 + y * 3 + k) as f32 / 40.0;
+        let rgb = DynamicImage::ImageRgb32F(ImageBuffer::from_fn(w, h, |x, y| {
+            Rgb([v(x, y, 0), v(x, y, 1), v(x, y, 2)])
+        }));
+        let rgba = DynamicImage::ImageRgba32F(ImageBuffer::from_fn(w, h, |x, y| {
+            Rgba([v(x, y, 0), v(x, y, 1), v(x, y, 2), 0.5])
+        }));
+        let deep = DynamicImage::ImageRgb16(ImageBuffer::from_fn(w, h, |x, y| {
+            Rgb([0, 1, 2].map(|k| (v(x, y, k) * 65535.0 / 2.0) as u16))
+        }));
+        let mut checked = 0;
+        for (img, space) in [
+            (&rgb, ColorSpace::Srgb),
+            (&rgba, ColorSpace::Linear),
+            (&deep, ColorSpace::Linear),
+            (&deep, ColorSpace::Srgb),
+        ] {
+            let data = ImageData::from_owned(img.clone(), space);
+            let want = img.to_rgb32f();
+            for y in 0..h {
+                for x in 0..w {
+                    let p = want.get_pixel(x, y).0;
+                    let p = match (img, space) {
+                        (DynamicImage::ImageRgb16(_), ColorSpace::Srgb) => p.map(srgb_to_linear),
+                        _ => p,
+                    };
+                    assert_eq!(data.texel(x, y).to_array(), p, "({x}, {y}) of {space:?}");
+                    checked += 1;
+                }
+            }
+        }
+        assert_eq!(checked, 4 * 15);
     }
 
     #[test]
