@@ -31,9 +31,18 @@ pub struct Distribution2d {
     buckets: usize,
 }
 
-/// Appends to `cdf` the `n + 1` cumulative probabilities of `weights` (0 first, 1 last).
-/// Negative and non-finite weights count as 0; with no weight at all every piece is alike.
+/// Appends to `cdf` the `n + 1` cumulative probabilities of `weights` (0 first, 1 last),
+/// as [`cumulative_into`] gives them.
 fn push_cumulative(cdf: &mut Vec<f32>, weights: &[f32]) -> f64 {
+    let start = cdf.len();
+    cdf.resize(start + weights.len() + 1, 0.0);
+    cumulative_into(&mut cdf[start..], weights)
+}
+
+/// Writes into `out` (`n + 1` long) the cumulative probabilities of `weights` (`n` of
+/// them; 0 first, 1 last), and returns their total. Negative and non-finite weights count
+/// as 0; with no weight at all every piece is alike.
+fn cumulative_into(out: &mut [f32], weights: &[f32]) -> f64 {
     let clean = |x: f32| {
         if x.is_finite() && x > 0.0 {
             x as f64
@@ -42,19 +51,21 @@ fn push_cumulative(cdf: &mut Vec<f32>, weights: &[f32]) -> f64 {
         }
     };
     let total: f64 = weights.iter().map(|&x| clean(x)).sum();
-    let (weight, sum): (&dyn Fn(f32) -> f64, f64) = if total > 0.0 {
-        (&clean, total)
-    } else {
-        (&|_| 1.0, weights.len() as f64)
-    };
-    let start = cdf.len();
     let mut acc = 0.0f64;
-    cdf.push(0.0f32);
-    for &x in weights {
-        acc += weight(x);
-        cdf.push((acc / sum) as f32);
+    out[0] = 0.0;
+    if total > 0.0 {
+        for (o, &x) in out[1..].iter_mut().zip(weights) {
+            acc += clean(x);
+            *o = (acc / total) as f32;
+        }
+    } else {
+        let sum = weights.len() as f64;
+        for o in &mut out[1..] {
+            acc += 1.0;
+            *o = (acc / sum) as f32;
+        }
     }
-    cdf[start + weights.len()] = 1.0;
+    out[weights.len()] = 1.0;
     total
 }
 
@@ -65,23 +76,37 @@ fn push_cumulative(cdf: &mut Vec<f32>, weights: &[f32]) -> f64 {
 /// the `cdf` it points into, one miss after the other (docs/perf-log.md).
 const ROW_BUCKETS: usize = 64;
 
-/// Appends the guide of `c` (`n + 1` cumulative probabilities) in `m` buckets to `guide`:
-/// entry `k` is the last piece `i` whose `c[i]` is at most `k / m`, where the search for a
-/// `u` in that bucket starts. Nothing for tables too long for `u16` (searched whole).
+/// Whether a table of `n` pieces is short enough for a guide (whose entries are `u16`);
+/// a longer one is searched whole.
+fn guided(n: usize) -> bool {
+    n <= u16::MAX as usize + 1
+}
+
+/// Appends the guide of `c` (`n + 1` cumulative probabilities) in `m` buckets to `guide`,
+/// as [`guide_into`] makes it; nothing for a table too long for a guide.
 fn push_guide(guide: &mut Vec<u16>, c: &[f32], m: usize) {
-    let n = c.len() - 1;
-    if n > u16::MAX as usize + 1 {
+    if !guided(c.len() - 1) {
         return;
     }
+    let start = guide.len();
+    guide.resize(start + m, 0);
+    guide_into(&mut guide[start..], c);
+}
+
+/// Writes into `out` the guide of `c` (`n + 1` cumulative probabilities, `n` short enough
+/// for a guide) in `out.len()` buckets: entry `k` is the last piece `i` whose `c[i]` is at
+/// most `k / m`, where the search for a `u` in that bucket starts.
+fn guide_into(out: &mut [u16], c: &[f32]) {
+    let (n, m) = (c.len() - 1, out.len());
     // `k / m` rises with `k`, so the piece it falls in only moves on: one walk along `c`
     // finds every entry (the last `i` with `c[i] <= k / m`, at most `n - 1`).
     let mut i = 0;
-    for k in 0..m {
+    for (k, o) in out.iter_mut().enumerate() {
         let x = k as f32 / m as f32;
         while i + 1 < c.len() && c[i + 1] <= x {
             i += 1;
         }
-        guide.push(i.min(n - 1) as u16);
+        *o = i.min(n - 1) as u16;
     }
 }
 
@@ -131,27 +156,33 @@ impl Distribution2d {
     /// From `weights`, row by row (`width` x `height` of them). Negative and non-finite
     /// weights count as 0; with no weight at all every cell is alike.
     pub fn new(weights: &[f32], width: usize, height: usize) -> Self {
+        use rayon::prelude::*;
         assert_eq!(weights.len(), width * height, "one weight per cell");
         let w = width.max(1);
         let buckets = w.min(ROW_BUCKETS);
-        let mut cdf = Vec::with_capacity(height * (w + 1));
-        let mut guide = Vec::with_capacity(height * buckets);
-        let mut totals = Vec::with_capacity(height);
-        for row in weights.chunks_exact(w) {
-            // A row of no weight is never chosen; its cells are made alike all the same.
-            let start = cdf.len();
-            totals.push(push_cumulative(&mut cdf, row) as f32);
-            push_guide(&mut guide, &cdf[start..], buckets);
-        }
         // (A grid of no columns has no rows either.)
+        let rows = weights.len() / w;
+        // Row by row on every core: each row's tables depend on its own weights alone.
+        // A row of no weight is never chosen; its cells are made alike all the same.
+        let mut cdf = vec![0.0f32; rows * (w + 1)];
+        let mut totals = vec![0.0f32; rows];
+        cdf.par_chunks_mut(w + 1)
+            .zip(weights.par_chunks(w))
+            .zip(totals.par_iter_mut())
+            .for_each(|((c, row), total)| *total = cumulative_into(c, row) as f32);
+        let mut guide = vec![0u16; if guided(w) { rows * buckets } else { 0 }];
+        guide
+            .par_chunks_mut(buckets)
+            .zip(cdf.par_chunks(w + 1))
+            .for_each(|(g, c)| guide_into(g, c));
         let (mut row_cdf, mut row_guide) = (Vec::new(), Vec::new());
-        if !totals.is_empty() {
+        if rows > 0 {
             push_cumulative(&mut row_cdf, &totals);
-            push_guide(&mut row_guide, &row_cdf, totals.len());
+            push_guide(&mut row_guide, &row_cdf, rows);
         }
         Distribution2d {
             width: w,
-            height: totals.len(),
+            height: rows,
             row_cdf,
             row_guide,
             cdf,
