@@ -128,7 +128,11 @@ impl Path {
         rays.camera += 1;
         loop {
             rays.deepest = rays.deepest.max(depth);
-            let Some(mut hit) = scene.closest_hit_skipping(&ray, f32::INFINITY, skip) else {
+            // The hit is used where it was made: moved out of its `Option`, it was copied
+            // in wide loads over the narrower stores that had just built it, which the
+            // processor cannot forward (a stall on every bounce; docs/perf-log.md).
+            let mut found = scene.closest_hit_skipping(&ray, f32::INFINITY, skip);
+            let Some(hit) = found.as_mut() else {
                 if DEFER
                     && !R::EVENTS
                     && !R::ACTIVE
@@ -215,7 +219,7 @@ impl Path {
                 }
                 break;
             }
-            scene.with_detail(&mut hit, &tex);
+            scene.with_detail(hit, &tex);
             let base = scene.base_color(&hit, &tex);
             let frame = Frame::from_axis(hit.shading_normal);
             beta *= wavelength.weigh(m.dispersion.is_some());
