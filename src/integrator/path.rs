@@ -168,16 +168,16 @@ impl Path {
             // change, for a mirror or glass to pass the differentials on).
             let patch = match diff {
                 RayDifferentials::None => None,
-                _ if !scene.reads_textures(&hit) => None,
+                _ if !scene.reads_textures(hit) => None,
                 d => d
                     .of(scene, &ray)
-                    .and_then(|d| scene.patch(&hit, &ray, &d, true)),
+                    .and_then(|d| scene.patch(hit, &ray, &d, true)),
             };
             let tex = crate::texture::TexturePoint {
                 footprint: patch.as_ref().map(|p| &p.footprint),
                 ..hit.tex
             };
-            let m = scene.material_at(&hit);
+            let m = scene.material_at(hit);
             let front = ray.dir.dot(hit.normal) < 0.0;
             let mut record = R::ACTIVE.then(|| VertexRecord {
                 depth,
@@ -193,7 +193,7 @@ impl Path {
                 let le = e.emitted(front, &scene.textures, &tex);
                 if le != Color::ZERO {
                     let (w, light_pdf) =
-                        self.emitter_weight(scene, &hit, specular, prev_pdf, prev_point);
+                        self.emitter_weight(scene, hit, specular, prev_pdf, prev_point);
                     let c = beta * le * w;
                     added += c;
                     if R::EVENTS {
@@ -220,7 +220,7 @@ impl Path {
                 break;
             }
             scene.with_detail(hit, &tex);
-            let base = scene.base_color(&hit, &tex);
+            let base = scene.base_color(hit, &tex);
             let frame = Frame::from_axis(hit.shading_normal);
             beta *= wavelength.weigh(m.dispersion.is_some());
             let v = Vertex {
@@ -240,7 +240,7 @@ impl Path {
             let (u, ul) = (Vec2::new(b0, b1), Vec2::new(l0, l1));
             if v.bsdf.has_non_delta() {
                 let uc = sampler.next_choice();
-                let (c, lr, event) = self.light_sample::<R>(scene, &hit, &v, uc, ul, rays);
+                let (c, lr, event) = self.light_sample::<R>(scene, hit, &v, uc, ul, rays);
                 let c = beta * c;
                 added += c;
                 if let Some(e) = event {
@@ -305,13 +305,13 @@ impl Path {
             };
             diff = match before.of(scene, &ray) {
                 Some(d) => self
-                    .passed_on(scene, &hit, &ray, &d, patch, dir, through, front)
+                    .passed_on(scene, hit, &ray, &d, patch, dir, through, front)
                     .map_or(RayDifferentials::None, RayDifferentials::Known),
                 None => RayDifferentials::None,
             };
             let side = if outward { hit.normal } else { -hit.normal };
             ray = Ray::new(offset_ray_origin(hit.point, side), dir);
-            skip = scene.leaving(&hit, outward);
+            skip = scene.leaving(hit, outward);
             depth += 1;
             rays.secondary += 1;
             // `depth` is now the bounces so far plus one: roulette from the `rr_depth`-th
