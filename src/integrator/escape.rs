@@ -43,11 +43,18 @@ impl Traced {
     pub fn resolve(self, scene: &Scene) -> Color {
         match self {
             Traced::Done(c) => c,
-            Traced::Escaping(e) => {
-                let (le, _) = super::Path.escaped(scene, e.toward, e.depth, e.specular, e.prev_pdf);
-                super::Path::clamped(scene, e.gathered + e.beta * le)
-            }
+            Traced::Escaping(e) => e.resolve(scene),
         }
+    }
+}
+
+impl Escape {
+    /// The path's colour, its environment light looked up now.
+    #[inline]
+    pub fn resolve(self, scene: &Scene) -> Color {
+        let (le, _) =
+            super::Path.escaped(scene, self.toward, self.depth, self.specular, self.prev_pdf);
+        super::Path::clamped(scene, self.gathered + self.beta * le)
     }
 }
 

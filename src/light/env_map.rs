@@ -210,8 +210,9 @@ impl EnvironmentMap {
         self.density.prefetch(uv);
     }
 
+    /// Radiance from image coordinates `uv`.
     #[inline]
-    fn radiance_at(&self, uv: Vec2) -> Color {
+    pub(crate) fn radiance_at(&self, uv: Vec2) -> Color {
         let w = self.image.width() as i64;
         let Some((xs, ys, fx, fy)) = self.footprint(uv) else {
             return Color::ZERO;
@@ -239,13 +240,7 @@ impl EnvironmentMap {
     /// Radiance from world direction `world`.
     #[inline]
     pub(crate) fn radiance(&self, world: Vec3A) -> Color {
-        self.radiance_uv(self.uv(world))
-    }
-
-    /// Radiance from image coordinates `uv`.
-    #[inline]
-    pub(crate) fn radiance_uv(&self, uv: Vec2) -> Color {
-        self.radiance_at(uv)
+        self.radiance_at(self.uv(world))
     }
 
     /// Radiance from world direction `world` and the density of [`EnvironmentMap::sample`]

@@ -110,7 +110,7 @@ impl Environment {
     #[inline]
     pub fn radiance_toward(&self, t: Toward) -> Color {
         match (&self.source, t.uv) {
-            (EnvironmentSource::Map(m), Some(uv)) => m.radiance_uv(uv),
+            (EnvironmentSource::Map(m), Some(uv)) => m.radiance_at(uv),
             _ => self.radiance(t.dir),
         }
     }

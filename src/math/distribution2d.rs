@@ -27,8 +27,6 @@ pub struct Distribution2d {
     /// Row by row, the guide of each row's stretch of `cdf`, in [`ROW_BUCKETS`] buckets
     /// (fewer for a narrower row).
     guide: Vec<u16>,
-    /// The buckets of each row's guide.
-    buckets: usize,
 }
 
 /// Appends to `cdf` the `n + 1` cumulative probabilities of `weights` (0 first, 1 last),
@@ -111,14 +109,15 @@ fn guide_into(out: &mut [u16], c: &[f32]) {
 }
 
 /// The stretch of `c` (`n + 1` cumulative probabilities) that guide `g` (of `g.len()`
-/// buckets, not empty) gives `u` (in `[0, 1)`) to search: its first and last entries.
+/// buckets, not empty) gives `u` (in `[0, 1)`) to search: its first and last entries, and
+/// where `u` lies within its bucket (from 0 to 1).
 #[inline]
-fn stretch(n: usize, g: &[u16], u: f32) -> (usize, usize) {
+fn stretch(n: usize, g: &[u16], u: f32) -> (usize, usize, f32) {
     let m = g.len();
     let k = ((u * m as f32) as usize).min(m - 1);
     let lo = g[k] as usize;
     let hi = if k + 1 < m { g[k + 1] as usize + 1 } else { n };
-    (lo, hi)
+    (lo, hi, u * m as f32 - k as f32)
 }
 
 /// The piece of `c` (`n + 1` cumulative probabilities, with guide `g` or none) that `u`
@@ -128,7 +127,7 @@ fn stretch(n: usize, g: &[u16], u: f32) -> (usize, usize) {
 fn find(c: &[f32], g: &[u16], u: f32) -> usize {
     let n = c.len() - 1;
     if !g.is_empty() {
-        let (lo, hi) = stretch(n, g, u);
+        let (lo, hi, _) = stretch(n, g, u);
         // Rounding may put `u` just outside its bucket's range: then the whole table.
         if c[lo] <= u && c[hi] > u {
             return lo + c[lo..=hi].partition_point(|&v| v <= u) - 1;
@@ -187,14 +186,13 @@ impl Distribution2d {
             row_guide,
             cdf,
             guide,
-            buckets,
         }
     }
 
     /// Row `r`'s cumulative probabilities and guide.
     #[inline]
     fn row_tables(&self, r: usize) -> (&[f32], &[u16]) {
-        let (w, m) = (self.width, self.buckets);
+        let (w, m) = (self.width, self.width.min(ROW_BUCKETS));
         let guide = if self.guide.is_empty() {
             &[][..]
         } else {
@@ -224,19 +222,26 @@ impl Distribution2d {
         let (c, g) = self.row_tables(r);
         let ux = u.x.clamp(0.0, 1.0 - f32::EPSILON);
         if !g.is_empty() {
-            let (n, m) = (c.len() - 1, g.len());
-            let (lo, hi) = stretch(n, g, ux);
+            let n = c.len() - 1;
+            let (lo, hi, along) = stretch(n, g, ux);
             // The stretch's cache lines (a few for a row of even weights; a long stretch
             // is a row's faint part, rarely drawn: its first lines).
             for i in (lo..=hi).step_by(16).take(4) {
                 super::prefetch(&c[i]);
             }
-            let along = ux * m as f32 - ((ux * m as f32) as usize).min(m - 1) as f32;
             let guess = lo as f32 + along * (hi - lo) as f32;
             hint(Vec2::new(guess / n as f32, y));
         }
         let (x, px) = place(c, find(c, g, ux), ux);
         Some((Vec2::new(x, y), py * px))
+    }
+
+    /// The row and the column of the cell holding `p` (the grid has rows).
+    #[inline]
+    fn cell(&self, p: Vec2) -> (usize, usize) {
+        let (h, w) = (self.height, self.width);
+        let r = ((p.y * h as f32) as usize).min(h - 1);
+        (r, ((p.x * w as f32) as usize).min(w - 1))
     }
 
     /// Asks for the memory [`Distribution2d::pdf`] at `p` reads, without waiting.
@@ -245,10 +250,8 @@ impl Distribution2d {
         if self.height == 0 {
             return;
         }
-        let (h, w) = (self.height, self.width);
-        let r = ((p.y * h as f32) as usize).min(h - 1);
-        let i = ((p.x * w as f32) as usize).min(w - 1);
-        super::prefetch(&self.cdf[r * (w + 1) + i]);
+        let (r, i) = self.cell(p);
+        super::prefetch(&self.cdf[r * (self.width + 1) + i]);
     }
 
     /// The density of [`Distribution2d::sample`] at `p`.
@@ -258,8 +261,7 @@ impl Distribution2d {
             return 0.0;
         }
         let (h, w) = (self.height, self.width);
-        let r = ((p.y * h as f32) as usize).min(h - 1);
-        let i = ((p.x * w as f32) as usize).min(w - 1);
+        let (r, i) = self.cell(p);
         let (c, _) = self.row_tables(r);
         // As `sample` multiplies them, to the bit.
         let py = (self.row_cdf[r + 1] - self.row_cdf[r]) * h as f32;

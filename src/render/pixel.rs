@@ -241,7 +241,7 @@ impl PixelJob<'_> {
             let ray = camera_ray(camera, &mut sampler, px, py);
             let traced = trace(&ray, &mut sampler, rays).into();
             if let Some((e, before, sign)) = waiting.take() {
-                add(Traced::Escaping(e).resolve(scene), &before, sign, bad);
+                add(e.resolve(scene), &before, sign, bad);
             }
             match traced {
                 Traced::Done(c) => add(c, &ray, sign, bad),
@@ -249,7 +249,7 @@ impl PixelJob<'_> {
             }
         }
         if let Some((e, before, sign)) = waiting {
-            add(Traced::Escaping(e).resolve(scene), &before, sign, bad);
+            add(e.resolve(scene), &before, sign, bad);
         }
     }
 }
