@@ -549,7 +549,7 @@ impl Path {
         if bs.pdf.is_nan() || bs.pdf <= 0.0 {
             return None;
         }
-        let dir = v.frame.to_world(bs.wi).normalize_or_zero();
+        let dir = v.frame.to_world_unit(bs.wi);
         let wo = v.frame.to_world(v.wo);
         let through_shading = bs.wi.z * v.wo.z < 0.0;
         let through = dir.dot(v.ng) * wo.dot(v.ng) < 0.0;

@@ -4,7 +4,9 @@
 //! shape's outward normal points) or both.
 
 use super::{Emission, Emit, Falloff, LightSample};
-use crate::geometry::{Disk, Rect, Sphere, SurfaceSample, Triangle, area_to_solid_angle};
+use crate::geometry::{
+    Disk, Rect, Sphere, SurfaceSample, Triangle, area_to_solid_angle, area_to_solid_angle_across,
+};
 use crate::math::{Color, Ray, Vec2, Vec3A};
 
 /// An emitting shape in world space.
@@ -64,6 +66,9 @@ pub struct AreaLight {
     pub two_sided: bool,
     /// The object it is.
     pub object: usize,
+    /// One over the shape's area (the density of a point sampled by area), worked out once:
+    /// a rectangle's and a triangle's area take a square root.
+    inv_area: f32,
 }
 
 /// Which area light each part of an object is: a hit on it names its light through this.
@@ -106,6 +111,26 @@ pub struct AreaSample {
 }
 
 impl AreaLight {
+    /// A light of `radiance` (linear RGB; a texture's mean where `texture` gives it) on
+    /// `emitter`, which is object `object` of the scene.
+    pub fn new(
+        emitter: Emitter,
+        radiance: Color,
+        texture: Option<usize>,
+        two_sided: bool,
+        object: usize,
+    ) -> Self {
+        let inv_area = 1.0 / emitter.area();
+        AreaLight {
+            emitter,
+            radiance,
+            texture,
+            two_sided,
+            object,
+            inv_area,
+        }
+    }
+
     /// The radiance leaving a point of front normal `normal` toward `dir` (unit, away from
     /// the light).
     #[inline]
@@ -119,24 +144,40 @@ impl AreaLight {
 
     /// A point of the light chosen for `from`, with its density per unit solid angle.
     pub fn sample(&self, from: Vec3A, u: Vec2) -> Option<AreaSample> {
-        let by_area = |s: SurfaceSample| {
-            let pdf = area_to_solid_angle(s.pdf, from, s.point, s.normal)?;
-            Some(AreaSample {
-                point: s.point,
-                normal: s.normal,
-                pdf,
+        self.sample_toward(from, u).map(|(s, _, _)| s)
+    }
+
+    /// [`AreaLight::sample`], with the unit direction from `from` to the point and the
+    /// distance: a shape sampled by area finds them with its density, from one square root
+    /// and with the divisions side by side rather than one after another.
+    #[inline]
+    fn sample_toward(&self, from: Vec3A, u: Vec2) -> Option<(AreaSample, Vec3A, f32)> {
+        let by_area = |p: SurfaceSample| {
+            let d = p.point - from;
+            let (pdf, distance) = area_to_solid_angle_across(self.inv_area, d, p.normal);
+            (pdf.is_finite() && pdf > 0.0).then(|| {
+                let (point, normal) = (p.point, p.normal);
+                (AreaSample { point, normal, pdf }, d / distance, distance)
             })
         };
+        let toward = |p: AreaSample| {
+            let d = p.point - from;
+            let distance = d.length();
+            (p, d / distance, distance)
+        };
         match &self.emitter {
+            // (The shapes' own densities, `1 / area`, go unused and are not worked out.)
             Emitter::Rect(s) => by_area(s.sample_area(u)),
             Emitter::Disk(s) => by_area(s.sample_area(u)),
             Emitter::Triangle(s) => by_area(s.sample_area(u)),
             Emitter::Sphere(s) => {
                 let p = s.sample_solid_angle(from, u)?;
-                (p.pdf > 0.0 && p.pdf.is_finite()).then_some(AreaSample {
-                    point: p.point,
-                    normal: p.normal,
-                    pdf: p.pdf,
+                (p.pdf > 0.0 && p.pdf.is_finite()).then(|| {
+                    toward(AreaSample {
+                        point: p.point,
+                        normal: p.normal,
+                        pdf: p.pdf,
+                    })
                 })
             }
         }
@@ -147,7 +188,7 @@ impl AreaLight {
     pub fn pdf(&self, from: Vec3A, point: Vec3A, normal: Vec3A) -> f32 {
         match &self.emitter {
             Emitter::Sphere(s) => s.solid_angle_pdf(from, point),
-            e => area_to_solid_angle(1.0 / e.area(), from, point, normal).unwrap_or(0.0),
+            _ => area_to_solid_angle(self.inv_area, from, point, normal).unwrap_or(0.0),
         }
     }
 }
@@ -156,10 +197,7 @@ impl Emit for AreaLight {
     /// A point of the light chosen for `from` ([`AreaLight::sample`]) and the radiance it
     /// sends there (the untextured radiance: the caller reads a texture's at the point).
     fn sample_li(&self, from: Vec3A, u: Vec2, _default: Falloff) -> Option<LightSample> {
-        let s = self.sample(from, u)?;
-        let d = s.point - from;
-        let distance = d.length();
-        let to_light = d / distance;
+        let (s, to_light, distance) = self.sample_toward(from, u)?;
         let radiance = self.emitted(s.normal, -to_light);
         (radiance != Color::ZERO && distance > 0.0).then_some(LightSample {
             to_light,
@@ -229,7 +267,7 @@ impl Emit for AreaLight {
         } else {
             0.0
         };
-        (1.0 / self.emitter.area(), pdf_dir)
+        (self.inv_area, pdf_dir)
     }
 }
 
@@ -239,13 +277,7 @@ mod tests {
     use crate::math::chi2::{SphereBins, chi2_sphere};
 
     fn light(emitter: Emitter) -> AreaLight {
-        AreaLight {
-            emitter,
-            radiance: Color::ONE,
-            texture: None,
-            two_sided: false,
-            object: 0,
-        }
+        AreaLight::new(emitter, Color::ONE, None, false, 0)
     }
 
     /// Each shape's sampling, seen from a point, has the solid-angle density `pdf` says:

@@ -246,17 +246,17 @@ mod tests {
         use crate::math::chi2::{SphereBins, chi2_sphere};
         let world = (Vec3A::new(0.5, 0.0, 0.0), 3.0);
         let disk = |two_sided| {
-            Light::Area(AreaLight {
-                emitter: Emitter::Disk(Disk::new(
+            Light::Area(AreaLight::new(
+                Emitter::Disk(Disk::new(
                     Vec3A::new(0.0, 1.0, 0.0),
                     Vec3A::new(0.3, -1.0, 0.2).normalize(),
                     0.5,
                 )),
-                radiance: Color::new(2.0, 1.0, 0.5),
-                texture: None,
+                Color::new(2.0, 1.0, 0.5),
+                None,
                 two_sided,
-                object: 0,
-            })
+                0,
+            ))
         };
         let lights = [
             Light::Point(PointLight {

@@ -96,13 +96,13 @@ mod tests {
     #[test]
     fn lights_are_chosen_by_power() {
         let disk = |r: f32| {
-            Light::Area(AreaLight {
-                emitter: Emitter::Disk(Disk::new(Vec3A::ZERO, Vec3A::Z, 1.0)),
-                radiance: Color::splat(r),
-                texture: None,
-                two_sided: false,
-                object: 0,
-            })
+            Light::Area(AreaLight::new(
+                Emitter::Disk(Disk::new(Vec3A::ZERO, Vec3A::Z, 1.0)),
+                Color::splat(r),
+                None,
+                false,
+                0,
+            ))
         };
         let point = Light::Point(PointLight {
             position: Vec3A::new(0.0, 0.0, 5.0),

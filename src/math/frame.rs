@@ -37,6 +37,21 @@ impl Frame {
     pub fn to_world(&self, l: Vec3A) -> Vec3A {
         self.u * l.x + self.v * l.y + self.w * l.z
     }
+
+    /// [`Frame::to_world`] of a direction, made unit again (zero for zero). A unit `l`
+    /// comes out within rounding of unit length, and is then scaled by one Newton step of
+    /// `1 / sqrt` about 1, `1.5 - 0.5 |w|^2` (within 4e-9 of the root's answer there), instead
+    /// of a square root and a division that each bounce's next ray waited on.
+    #[inline]
+    pub fn to_world_unit(&self, l: Vec3A) -> Vec3A {
+        let w = self.to_world(l);
+        let l2 = w.length_squared();
+        if (l2 - 1.0).abs() < 1e-4 {
+            w * (1.5 - 0.5 * l2)
+        } else {
+            w.normalize_or_zero()
+        }
+    }
 }
 
 #[cfg(test)]
@@ -61,5 +76,28 @@ mod tests {
             let d = Vec3A::new(0.3, -0.7, 0.2);
             assert!((f.to_world(f.to_local(d)) - d).length() < 1e-5);
         }
+    }
+
+    /// A unit direction comes out unit and where `to_world` puts it, to within rounding; a
+    /// longer or shorter one is normalised; zero stays zero.
+    #[test]
+    fn world_directions_come_out_unit() {
+        let f = Frame::from_axis(Vec3A::new(0.2, -0.9, 0.4).normalize());
+        let mut checked = 0;
+        for i in 0..200 {
+            let (a, b) = (i as f32 * 0.731, i as f32 * 0.377);
+            let l = Vec3A::new(a.cos() * b.sin(), a.sin() * b.sin(), b.cos());
+            for scale in [1.0, 1.00001, 0.5, 3.0] {
+                let w = f.to_world_unit(l * scale);
+                assert!((w.length() - 1.0).abs() < 2e-7, "{l} x {scale}: {w}");
+                assert!(
+                    (w - f.to_world(l).normalize()).length() < 3e-7,
+                    "{l} x {scale}"
+                );
+                checked += 1;
+            }
+        }
+        assert_eq!(checked, 800);
+        assert_eq!(f.to_world_unit(Vec3A::ZERO), Vec3A::ZERO);
     }
 }

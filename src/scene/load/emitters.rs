@@ -51,13 +51,13 @@ pub(super) fn area_lights(
         match emitter(&o.shape, o.transform.as_ref()) {
             Some(emitter) => {
                 of_object[i] = ObjectLights::Whole(lights.len() as u32);
-                lights.push(Light::Area(AreaLight {
+                lights.push(Light::Area(AreaLight::new(
                     emitter,
-                    radiance: e.mean,
-                    texture: e.texture,
-                    two_sided: e.two_sided,
-                    object: i,
-                }));
+                    e.mean,
+                    e.texture,
+                    e.two_sided,
+                    i,
+                )));
             }
             None => warnings.push(format!(
                 "object `{}`: the path tracer finds its emission only where paths happen to hit it, which is noisy; light sampling covers rectangles, disks, triangles, meshes and spheres (disks and spheres scaled evenly)",
@@ -126,13 +126,13 @@ fn mesh_lights(
             continue;
         };
         of_lane[prim as usize] = lights.len() as u32;
-        lights.push(Light::Area(AreaLight {
-            emitter: Emitter::Triangle(triangle),
-            radiance: e.mean,
-            texture: e.texture,
-            two_sided: e.two_sided,
-            object: index,
-        }));
+        lights.push(Light::Area(AreaLight::new(
+            Emitter::Triangle(triangle),
+            e.mean,
+            e.texture,
+            e.two_sided,
+            index,
+        )));
     }
     for lane in 0..of_lane.len() {
         of_lane[lane] = of_lane[mesh.own_prim(lane as u32) as usize];
