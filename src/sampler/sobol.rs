@@ -10,11 +10,45 @@ use crate::math::{Rng, Vec2, hash_seed};
 #[derive(Clone, Debug)]
 pub struct Sobol {
     seed: u64,
+    /// The pixel started last, and its seed.
+    pixel: Option<(u32, u32)>,
     pixel_seed: u64,
     index: u32,
     dimension: u32,
     /// The sample's own generator, for [`Sobol::next_choice`].
     choices: Rng,
+    /// The scrambles of the pixel's first [`KEPT`] requests, which depend on the pixel and
+    /// the request but not on the sample: worked out for its first sample, used by the
+    /// others. Bit `d` of `known` says whether request `d`'s is there.
+    kept: [Scramble; KEPT],
+    known: u32,
+}
+
+/// Requests whose scrambles a sampler keeps from one sample of a pixel to the next (a path
+/// of 16 bounces and its camera take 17).
+const KEPT: usize = 24;
+
+/// What a request's seed scrambles a sample with: the sample index's shuffle and the
+/// scramble of each of the four dimensions (two hashes, most of a request's work).
+#[derive(Clone, Copy, Debug, Default)]
+struct Scramble {
+    index: u32,
+    lanes: [u32; 4],
+}
+
+impl Scramble {
+    /// The scrambles `sobol_burley::sample_4d` derives from `seed`.
+    #[inline]
+    fn of(seed: u32) -> Self {
+        use sobol_burley::parts::{Int4, hash, hash_int4};
+        let scramble: Int4 = [seed.wrapping_mul(0x9c8f_2d3b); 4].into();
+        let scramble = scramble ^ [0x912f_69ba, 0x174f_18ab, 0x691e_72ca, 0xb40c_c1b8].into();
+        let lanes = hash_int4(scramble);
+        Scramble {
+            index: hash(seed ^ 0x79c6_8e4a),
+            lanes: lanes.into(),
+        }
+    }
 }
 
 /// Samples per pixel the sequence holds.
@@ -25,16 +59,23 @@ impl Sobol {
     pub fn new(seed: u64) -> Self {
         Sobol {
             seed,
+            pixel: None,
             pixel_seed: 0,
             index: 0,
             dimension: 0,
             choices: Rng::new(seed),
+            kept: [Scramble::default(); KEPT],
+            known: 0,
         }
     }
 
     /// Starts sample `index` (below `MAX_SAMPLES`, 65,536; larger ones wrap) of pixel `(x, y)`.
     pub fn start(&mut self, x: u32, y: u32, index: u32) {
-        self.pixel_seed = hash_seed(&[self.seed, x as u64, y as u64]);
+        if self.pixel != Some((x, y)) {
+            self.pixel = Some((x, y));
+            self.pixel_seed = hash_seed(&[self.seed, x as u64, y as u64]);
+            self.known = 0;
+        }
         self.index = index % MAX_SAMPLES;
         self.dimension = 0;
         self.choices =
@@ -84,8 +125,17 @@ impl Sobol {
     /// against them, fit for a lobe choice or Russian roulette.
     #[inline]
     pub fn next_4d(&mut self) -> [f32; 4] {
-        let seed = self.request();
-        sample_4d(self.index, seed)
+        let d = self.dimension as usize;
+        if d < KEPT && self.known & (1 << d) != 0 {
+            self.dimension += 1;
+            return sample_4d_scrambled(self.index, &self.kept[d]);
+        }
+        let scramble = Scramble::of(self.request());
+        if d < KEPT {
+            self.kept[d] = scramble;
+            self.known |= 1 << d;
+        }
+        sample_4d_scrambled(self.index, &scramble)
     }
 }
 
@@ -95,22 +145,35 @@ impl Sobol {
 /// are linear in the index's bits, so two tables over its bytes (8 KiB, in L1) give them
 /// with one XOR. The shuffle and the scramble around it are the crate's own functions, with
 /// its constants; a test checks every index against the crate.
-#[inline]
+#[cfg(test)]
 fn sample_4d(index: u32, seed: u32) -> [f32; 4] {
-    use sobol_burley::parts::{Int4, hash, hash_int4, owen_scramble_int4_rev, owen_scramble_rev};
-    let shuffled_rev = owen_scramble_rev(index.reverse_bits(), hash(seed ^ 0x79c6_8e4a));
+    sample_4d_scrambled(index, &Scramble::of(seed))
+}
+
+/// [`sample_4d`] with its seed's scrambles worked out.
+#[inline]
+fn sample_4d_scrambled(index: u32, scramble: &Scramble) -> [f32; 4] {
+    use sobol_burley::parts::owen_scramble_rev;
+    let shuffled_rev = owen_scramble_rev(index.reverse_bits(), scramble.index);
     let tables = &*POINTS;
     let (hi, lo) = (
         (shuffled_rev >> 24) as usize,
         (shuffled_rev >> 16 & 0xff) as usize,
     );
     let [a, b] = [tables[1][hi], tables[0][lo]];
-    let sobol: Int4 = std::array::from_fn::<u32, 4, _>(|k| a[k] ^ b[k]).into();
-    let scramble: Int4 = [seed.wrapping_mul(0x9c8f_2d3b); 4].into();
-    let scramble = scramble ^ [0x912f_69ba, 0x174f_18ab, 0x691e_72ca, 0xb40c_c1b8].into();
-    owen_scramble_int4_rev(sobol, hash_int4(scramble))
-        .reverse_bits()
-        .to_f32_norm()
+    // The crate's `owen_scramble_int4_rev`, `reverse_bits` and `to_f32_norm`, lane by lane
+    // in plain integers, which the compiler puts in one vector as the crate does, but whose
+    // bit reversal it can do in two instructions where the processor has GFNI (the crate's
+    // own takes fifteen).
+    std::array::from_fn(|k| {
+        let mut x = a[k] ^ b[k];
+        x ^= x.wrapping_mul(0x3d20_adea);
+        x = x.wrapping_add(scramble.lanes[k]);
+        x = x.wrapping_mul(scramble.lanes[k] >> 16 | 1);
+        x ^= x.wrapping_mul(0x0552_6c56);
+        x ^= x.wrapping_mul(0x53a2_2864);
+        f32::from_bits(x.reverse_bits() >> 9 | 0x3f80_0000) - 1.0
+    })
 }
 
 /// The first four dimensions' Sobol points (bit-reversed) of each byte of a 16-bit
@@ -144,6 +207,36 @@ mod tests {
     /// A pixel's first 2^k samples of any request are a (0, k, 2)-net: every box of the
     /// square `2^a` wide and `2^(k - a)` high holds exactly one point. This is what makes
     /// Sobol sampling converge faster than independent numbers.
+    /// The scrambles kept from a pixel's earlier samples give what a fresh sampler gives,
+    /// whether the pixel was just started or others came between, and past the requests
+    /// kept.
+    #[test]
+    fn kept_scrambles_give_a_fresh_samplers_numbers() {
+        let draw = |s: &mut Sobol, x, y, i| -> Vec<[f32; 4]> {
+            s.start(x, y, i);
+            (0..KEPT + 4).map(|_| s.next_4d()).collect()
+        };
+        let mut kept = Sobol::new(9);
+        let mut compared = 0;
+        for (x, y, i) in [
+            (3, 4, 0),
+            (3, 4, 1),
+            (3, 4, 7),
+            (5, 4, 0),
+            (3, 4, 2),
+            (5, 4, 1),
+        ] {
+            let fresh = draw(&mut Sobol::new(9), x, y, i);
+            assert_eq!(
+                draw(&mut kept, x, y, i),
+                fresh,
+                "pixel ({x}, {y}), sample {i}"
+            );
+            compared += fresh.len();
+        }
+        assert_eq!(compared, 6 * (KEPT + 4));
+    }
+
     #[test]
     fn a_pixels_first_power_of_two_samples_are_stratified_in_every_pair() {
         let mut s = Sobol::new(42);
