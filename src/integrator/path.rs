@@ -238,8 +238,17 @@ impl Path {
                 r.bsdf = v.bsdf.name().into();
             }
             let (u, ul) = (Vec2::new(b0, b1), Vec2::new(l0, l1));
-            if v.bsdf.has_non_delta() {
-                let uc = sampler.next_choice();
+            // The next direction is sampled before the light is: the path waits on it, and
+            // the light sample's work (a shadow ray's walk among it) then fills the time
+            // that waiting leaves, instead of coming first. The choices are drawn in the
+            // same order as ever: the light's, then the lobe's.
+            let light_choice = v.bsdf.has_non_delta().then(|| sampler.next_choice());
+            let uc = sampler.next_choice();
+            let sampled = v
+                .bsdf
+                .sample(v.wo, u, uc)
+                .and_then(|bs| Some((bs, self.continue_from(&v, &bs)?)));
+            if let Some(uc) = light_choice {
                 let (c, lr, event) = self.light_sample::<R>(scene, hit, &v, uc, ul, rays);
                 let c = beta * c;
                 added += c;
@@ -255,11 +264,6 @@ impl Path {
             if let Some(r) = &mut record {
                 r.contribution = added.to_array();
             }
-            let uc = sampler.next_choice();
-            let sampled = v
-                .bsdf
-                .sample(v.wo, u, uc)
-                .and_then(|bs| Some((bs, self.continue_from(&v, &bs)?)));
             let Some((bs, (dir, through))) = sampled else {
                 if let Some(r) = record {
                     rec.vertex(r);
