@@ -22,6 +22,9 @@ pub enum SamplerKind {
 }
 
 /// A sampler, closed set, dispatched by `match`.
+// The Sobol sampler carries its pixel's scrambles (about half a kilobyte); a sampler is made
+// once a pixel, on the stack, and a box would cost an allocation a pixel instead.
+#[allow(clippy::large_enum_variant)]
 #[derive(Clone, Debug)]
 pub enum Sampler {
     /// Independent uniform numbers.
