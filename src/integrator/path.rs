@@ -128,14 +128,14 @@ impl Path {
         rays.camera += 1;
         loop {
             rays.deepest = rays.deepest.max(depth);
-            // The hit is used where it was made: moved out of its `Option`, it was copied
-            // in wide loads over the narrower stores that had just built it, which the
-            // processor cannot forward (a stall on every bounce; docs/perf-log.md).
             // One request of four dimensions per bounce, drawn whether used or not, so that
             // each bounce takes the same dimensions: the BSDF's direction and a point on a
             // light; the choices (light, lobe, Russian roulette) are the sampler's
             // independent ones. Drawn before the ray is traced, which it does not depend on.
             let [b0, b1, l0, l1] = sampler.next_4d();
+            // The hit is used where it was made: moved out of its `Option`, it was copied
+            // in wide loads over the narrower stores that had just built it, which the
+            // processor cannot forward (a stall on every bounce; docs/perf-log.md).
             let mut found = scene.closest_hit_skipping(&ray, f32::INFINITY, skip);
             let Some(hit) = found.as_mut() else {
                 if DEFER
