@@ -46,23 +46,24 @@ pub struct SurfaceSample {
 }
 
 /// A density per unit area at `point` (normal `normal`) as a density per unit solid angle
-/// seen from `from`: `pdf d^2 / |cos theta|`; `None` where the surface is seen edge-on or
-/// `from` is on it.
+/// seen from `from`: `pdf d^2 / |cos theta|`; `None` where it is not a finite, positive
+/// density (the surface seen edge-on, `from` on it).
 pub fn area_to_solid_angle(pdf: f32, from: Vec3A, point: Vec3A, normal: Vec3A) -> Option<f32> {
     let v = area_to_solid_angle_across(pdf, point - from, normal).0;
     (v.is_finite() && v > 0.0).then_some(v)
 }
 
 /// [`area_to_solid_angle`] seen across `d` (from the point that sees to the point on the
-/// surface), with the distance: `pdf |d|^3 / |d . normal|`, where `|d . normal| / |d|` is
-/// the cosine. Infinite or NaN where `d` is zero or runs along the surface. The square root
-/// and the dot product are worked out side by side, then one division: a light sample
-/// waited on a square root, a division and another division one after another.
+/// surface), with the distance: `pdf |d|^2 (|d| / |d . normal|)`, where `|d . normal| / |d|`
+/// is the cosine. Infinite or NaN where `d` is zero or runs along the surface. The square
+/// root and the dot product are worked out side by side, then one division: a light sample
+/// waited on a square root, a division and another division one after another. (`|d| /
+/// |d . normal|` is at least 1, so the density overflows no sooner than `pdf d^2 / |cos|`.)
 #[inline]
 pub fn area_to_solid_angle_across(pdf: f32, d: Vec3A, normal: Vec3A) -> (f32, f32) {
     let d2 = d.length_squared();
     let distance = d2.sqrt();
-    (pdf * d2 * distance / d.dot(normal).abs(), distance)
+    (pdf * d2 * (distance / d.dot(normal).abs()), distance)
 }
 
 use crate::math::differential::seamless;

@@ -146,3 +146,31 @@ fn a_sphere_sampled_by_solid_angle() {
         .unwrap();
     }
 }
+
+/// The conversion to solid angle against its closed form, `pdf d^2 / cos`, near and as far
+/// as a float's square allows; and no density where the surface is seen edge-on or from
+/// on it.
+#[test]
+fn area_densities_convert_to_solid_angle() {
+    let normal = Vec3A::new(0.0, 0.0, -1.0);
+    let mut checked = 0;
+    for distance in [1e-3f32, 0.5, 1.0, 7.0, 1e6, 1e12, 1e15] {
+        for tilt in [0.0f32, 0.4, 1.2] {
+            let point = Vec3A::new(distance * tilt.sin(), 0.0, distance * tilt.cos());
+            let want = 0.25 * (distance as f64).powi(2) / (tilt as f64).cos();
+            let got = area_to_solid_angle(0.25, Vec3A::ZERO, point, normal)
+                .unwrap_or_else(|| panic!("distance {distance}, tilt {tilt}"));
+            assert!(
+                ((got as f64 - want) / want).abs() < 1e-5,
+                "distance {distance}, tilt {tilt}: {got} against {want}"
+            );
+            let (_, d) = super::area_to_solid_angle_across(0.25, point, normal);
+            assert!(((d - distance) / distance).abs() < 1e-6);
+            checked += 1;
+        }
+    }
+    assert_eq!(checked, 21);
+    let edge_on = Vec3A::new(1.0, 0.0, 0.0);
+    assert_eq!(area_to_solid_angle(1.0, Vec3A::ZERO, edge_on, normal), None);
+    assert_eq!(area_to_solid_angle(1.0, edge_on, edge_on, normal), None);
+}

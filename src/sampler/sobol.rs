@@ -139,18 +139,19 @@ impl Sobol {
     }
 }
 
-/// `sobol_burley::sample_4d(index, 0, seed)`, the same numbers, with the Sobol points looked
-/// up rather than built bit by bit. The crate XORs one direction vector per set bit of the
-/// shuffled index, a loop of up to 16 rounds with a branch no predictor learns; the points
-/// are linear in the index's bits, so two tables over its bytes (8 KiB, in L1) give them
-/// with one XOR. The shuffle and the scramble around it are the crate's own functions, with
-/// its constants; a test checks every index against the crate.
+/// `sobol_burley::sample_4d(index, 0, seed)` (what the tests check against the crate).
 #[cfg(test)]
 fn sample_4d(index: u32, seed: u32) -> [f32; 4] {
     sample_4d_scrambled(index, &Scramble::of(seed))
 }
 
-/// [`sample_4d`] with its seed's scrambles worked out.
+/// `sobol_burley::sample_4d(index, 0, seed)`, the same numbers, given the scrambles
+/// [`Scramble::of`] derives from `seed`, with the Sobol points looked up rather than built
+/// bit by bit. The crate XORs one direction vector per set bit of the shuffled index, a
+/// loop of up to 16 rounds with a branch no predictor learns; the points are linear in the
+/// index's bits, so two tables over its bytes (8 KiB, in L1) give them with one XOR. The
+/// shuffle and the scramble around it are the crate's own functions, with its constants; a
+/// test checks every index against the crate.
 #[inline]
 fn sample_4d_scrambled(index: u32, scramble: &Scramble) -> [f32; 4] {
     use sobol_burley::parts::owen_scramble_rev;
@@ -204,9 +205,6 @@ mod tests {
         }
     }
 
-    /// A pixel's first 2^k samples of any request are a (0, k, 2)-net: every box of the
-    /// square `2^a` wide and `2^(k - a)` high holds exactly one point. This is what makes
-    /// Sobol sampling converge faster than independent numbers.
     /// The scrambles kept from a pixel's earlier samples give what a fresh sampler gives,
     /// whether the pixel was just started or others came between, and past the requests
     /// kept.
@@ -237,6 +235,9 @@ mod tests {
         assert_eq!(compared, 6 * (KEPT + 4));
     }
 
+    /// A pixel's first 2^k samples of any request are a (0, k, 2)-net: every box of the
+    /// square `2^a` wide and `2^(k - a)` high holds exactly one point. This is what makes
+    /// Sobol sampling converge faster than independent numbers.
     #[test]
     fn a_pixels_first_power_of_two_samples_are_stratified_in_every_pair() {
         let mut s = Sobol::new(42);
