@@ -1,6 +1,7 @@
 //! Why one pixel has its colour, asked of a loaded scene: the tree of rays behind one
-//! Whitted sample, or the one path of a path-traced sample, and the JSON document that
-//! `snell explain --json` prints and the preview's click shows. The command line, the
+//! Whitted sample, the one path of a path-traced sample, or a bidirectional sample's
+//! subpaths and strategies, and the JSON document that `snell explain --json` prints and the
+//! preview's click shows (for the scene's integrator: `pixel_json`). The command line, the
 //! preview server and scripts all ask here.
 
 use crate::Scene;
@@ -75,6 +76,9 @@ impl WhittedExplained {
     }
 }
 
+/// What explaining a pixel under light tracing says: the path shown is the path tracer's.
+pub const LIGHT_NOTE: &str = "light tracing traces no camera paths: this is the path tracer's path of the pixel, whose picture light tracing agrees with";
+
 /// A path-traced sample explained: its pixel and index, where it lies on the film, the
 /// colour it returns, the rays it traced and the record of its path.
 #[derive(Clone, Debug)]
@@ -130,7 +134,7 @@ impl PathExplained {
     pub fn to_json(&self, scene: &Scene, scene_path: &std::path::Path) -> Value {
         let s = &scene.settings;
         let r = &self.rays;
-        json!({
+        let mut doc = json!({
             "scene": scene_path.display().to_string(),
             "integrator": "path",
             "image": [s.width, s.height],
@@ -142,7 +146,12 @@ impl PathExplained {
             "clamp": s.integrator.clamp,
             "rays_traced": { "camera": r.camera, "secondary": r.secondary, "shadow": r.shadow },
             "path": &self.record,
-        })
+        });
+        // Light tracing's scene is explained by the path tracer's path: said so.
+        if s.integrator.kind == crate::scene::IntegratorKind::Light {
+            doc["note"] = LIGHT_NOTE.into();
+        }
+        doc
     }
 }
 
@@ -159,8 +168,12 @@ pub struct BdptExplained {
     /// What the sample adds to its own pixel (the strategies with more than one camera
     /// vertex).
     pub color: Color,
-    /// Vertices of the eye's subpath (the eye included) and of the light's.
-    pub lengths: (usize, usize),
+    /// The eye's subpath (the eye first) and the light's (the light first), vertex by
+    /// vertex.
+    pub subpaths: (
+        Vec<crate::integrator::ShownVertex>,
+        Vec<crate::integrator::ShownVertex>,
+    ),
     /// The strategies that carried light, in the order they were joined.
     pub strategies: Vec<crate::integrator::Strategy>,
     /// The rays traced.
@@ -190,7 +203,7 @@ pub fn bdpt(scene: &Scene, (x, y): (u32, u32), k: u32) -> BdptExplained {
         sample: k,
         film: (px, py),
         color,
-        lengths: paths.lengths(),
+        subpaths: paths.shown(scene),
         strategies,
         rays,
     }
@@ -224,8 +237,10 @@ impl BdptExplained {
             "sample": self.sample,
             "film_position": [self.film.0, self.film.1],
             "color": self.color.to_array(),
-            "camera_vertices": self.lengths.0,
-            "light_vertices": self.lengths.1,
+            "camera_vertices": self.subpaths.0.len(),
+            "light_vertices": self.subpaths.1.len(),
+            "camera_path": shown(&self.subpaths.0),
+            "light_path": shown(&self.subpaths.1),
             "rays_traced": { "camera": r.camera, "secondary": r.secondary, "shadow": r.shadow },
             "strategies": strategies,
         })
@@ -236,11 +251,23 @@ impl BdptExplained {
     pub fn to_text(&self) -> String {
         use std::fmt::Write;
         let mut out = String::new();
-        let (c, l) = self.lengths;
+        let (c, l) = (&self.subpaths.0, &self.subpaths.1);
         let _ = writeln!(
             out,
-            "  the eye's subpath has {c} vertices (the eye included), the light's {l}; each (s, t) joins s of the light's to t of the eye's"
+            "  the eye's subpath has {} vertices (the eye included), the light's {}; each (s, t) joins s of the light's to t of the eye's",
+            c.len(),
+            l.len()
         );
+        let chain = |v: &[crate::integrator::ShownVertex]| {
+            v.iter()
+                .map(|v| v.what.as_str())
+                .collect::<Vec<_>>()
+                .join(" -> ")
+        };
+        let _ = writeln!(out, "  the eye's: {}", chain(c));
+        if !l.is_empty() {
+            let _ = writeln!(out, "  the light's: {}", chain(l));
+        }
         let rgb = |c: Color| format!("({:.4}, {:.4}, {:.4})", c.x, c.y, c.z);
         for st in &self.strategies {
             let kind = match (st.s, st.t) {
@@ -270,21 +297,35 @@ impl BdptExplained {
     }
 }
 
-/// What the preview shows for a click on pixel `(x, y)`: the path of sample 0 under the path
-/// tracer (and under light tracing, which has no camera paths), the ray through the pixel's centre under Whitted (at most `max_rays` of its
-/// tree), each hit point with its place on the picture ([`place_on_picture`]); `None` when
-/// nothing was recorded.
+/// A subpath's vertices as `explain --json` gives them: what each is, and where.
+fn shown(v: &[crate::integrator::ShownVertex]) -> Vec<Value> {
+    v.iter()
+        .map(|v| json!({ "what": v.what, "point": v.point.to_array() }))
+        .collect()
+}
+
+/// What the preview shows for a click on pixel `(x, y)`, as `snell explain --json` gives
+/// it for the scene's integrator: under Whitted the ray through the pixel's centre (at most
+/// `max_rays` of its tree), under the path tracer the path of sample 0, under bdpt sample
+/// 0's two subpaths and its strategies, and under light tracing (which traces no camera
+/// paths) the path tracer's path, said so in its `note`; each point with its place on the
+/// picture ([`place_on_picture`]). `None` when nothing was recorded.
 pub fn pixel_json(
     scene: &Scene,
     scene_path: &std::path::Path,
     (x, y): (u32, u32),
     max_rays: usize,
 ) -> Option<Value> {
-    let mut doc = if scene.settings.integrator.kind != crate::scene::IntegratorKind::Whitted {
-        path(scene, (x, y), 0).to_json(scene, scene_path)
-    } else {
-        let film = (x as f32 + 0.5, y as f32 + 0.5);
-        whitted(scene, film, None, max_rays)?.to_json(scene, scene_path, (x, y), None)
+    use crate::scene::IntegratorKind;
+    let mut doc = match scene.settings.integrator.kind {
+        IntegratorKind::Whitted => {
+            let film = (x as f32 + 0.5, y as f32 + 0.5);
+            whitted(scene, film, None, max_rays)?.to_json(scene, scene_path, (x, y), None)
+        }
+        IntegratorKind::Bdpt => bdpt(scene, (x, y), 0).to_json(scene, scene_path),
+        IntegratorKind::Path | IntegratorKind::Light => {
+            path(scene, (x, y), 0).to_json(scene, scene_path)
+        }
     };
     place_on_picture(&mut doc, scene);
     Some(doc)

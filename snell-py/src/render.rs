@@ -293,8 +293,9 @@ fn run_waiting(
 }
 
 /// `snell explain --json`'s document for pixel `(x, y)`, as text: under the path tracer the
-/// path of sample `sample` (0 by default), under Whitted the ray through the pixel's centre
-/// with at most `max_rays` of its tree.
+/// path of sample `sample` (0 by default; light tracing's scene by the path tracer's path,
+/// said so in its `note`), under bdpt that sample's two subpaths and strategies, under
+/// Whitted the ray through the pixel's centre with at most `max_rays` of its tree.
 #[pyfunction]
 #[pyo3(signature = (scene, x, y, sample=None, max_rays=200))]
 pub fn explain(
@@ -313,13 +314,18 @@ pub fn explain(
         )));
     }
     let path: &Path = &scene.path;
-    let doc = py.detach(|| match (sc.settings.integrator.kind, sample) {
-        (IntegratorKind::Path, Some(k)) => {
-            let mut doc = snell::explain_pixel::path(sc, (x, y), k).to_json(sc, path);
-            snell::explain_pixel::place_on_picture(&mut doc, sc);
-            Some(doc)
-        }
-        _ => snell::explain_pixel::pixel_json(sc, path, (x, y), max_rays),
+    let doc = py.detach(|| {
+        let mut doc = match (sc.settings.integrator.kind, sample) {
+            (IntegratorKind::Path | IntegratorKind::Light, Some(k)) => {
+                snell::explain_pixel::path(sc, (x, y), k).to_json(sc, path)
+            }
+            (IntegratorKind::Bdpt, Some(k)) => {
+                snell::explain_pixel::bdpt(sc, (x, y), k).to_json(sc, path)
+            }
+            _ => return snell::explain_pixel::pixel_json(sc, path, (x, y), max_rays),
+        };
+        snell::explain_pixel::place_on_picture(&mut doc, sc);
+        Some(doc)
     });
     let doc = doc.ok_or_else(|| errors::value("nothing was recorded for that pixel"))?;
     Ok(doc.to_string())

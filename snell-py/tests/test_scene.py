@@ -132,6 +132,12 @@ def test_explain_is_the_command_lines_document(repo, run_cli):
         snell.explain(scene, 5000, 0)
     path = snell.explain(snell.load(repo / "scenes/cornell.toml"), 256, 256, sample=2)
     assert path["integrator"] == "path" and path["sample"] == 2
+    # Under bdpt, the sample's subpaths and strategies, as the command line gives them.
+    caustics = repo / "scenes/caustics.toml"
+    bd = snell.explain(snell.load(caustics), 240, 300, sample=1)
+    cli = json.loads(run_cli("explain", caustics, "--pixel", "240,300", "--sample", "1", "--json").stdout)
+    assert bd["integrator"] == "bdpt" and bd["camera_path"][0]["what"] == "the eye"
+    assert unplaced(bd) == cli
 
 
 def test_numpy_values_are_taken_as_numbers_and_other_objects_refused():

@@ -10,7 +10,7 @@ mod path;
 pub mod path_explain;
 mod whitted;
 
-pub use bdpt::{Bdpt, Paths, Strategy};
+pub use bdpt::{Bdpt, Paths, ShownVertex, Strategy};
 pub use escape::{Escape, Traced};
 pub use light_tracer::{LightTracer, LightView};
 pub use path::Path;

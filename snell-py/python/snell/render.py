@@ -147,6 +147,7 @@ def explain(
     """Why pixel (`x`, `y`) has its colour: the document `snell explain --json` prints, as
     a dict. Under Whitted, the tree of rays through the pixel's centre (at most `max_rays`);
     under the path tracer, the path of sample `sample` (0 unless given), every vertex with
-    what it added. Each hit `point` has a `screen` position beside it, for drawing the path
-    over the picture."""
+    what it added (under light tracing, which traces no camera paths, the same, said so in
+    its `note`); under bdpt, that sample's two subpaths and its strategies. Each hit `point`
+    has a `screen` position beside it, for drawing the path over the picture."""
     return json.loads(_snell.explain(_scene(scene).build(), x, y, sample, max_rays))

@@ -36,9 +36,7 @@ pub(crate) fn explain(args: ExplainArgs) -> ExitCode {
     // the same sample, which light tracing agrees with.
     let path = s.integrator.kind != snell::scene::IntegratorKind::Whitted;
     if s.integrator.kind == snell::scene::IntegratorKind::Light && !args.json {
-        println!(
-            "(light tracing traces no camera paths: this is the path tracer's path of the pixel, whose picture light tracing agrees with)"
-        );
+        println!("({})", snell::explain_pixel::LIGHT_NOTE);
     }
     let film = match args.sample {
         None if path => (0.0, 0.0),

@@ -58,10 +58,55 @@ pub struct Strategy {
     pub film: Option<(f32, f32)>,
 }
 
+/// A vertex of a subpath as `snell explain` shows it: where it is, and what is there.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ShownVertex {
+    /// Where it is; for a light far away or the background, a point in its direction (a
+    /// point of the disk a light subpath's rays left, or one unit along the ray that left
+    /// the scene).
+    pub point: crate::math::Vec3A,
+    /// What it is: the eye, a light, an object and its material, or the background.
+    pub what: String,
+}
+
 impl Paths {
     /// The vertices of the last sample's subpaths: the eye's (the eye included), the light's.
     pub fn lengths(&self) -> (usize, usize) {
         (self.camera.len(), self.light.len())
+    }
+
+    /// The last sample's subpaths, the eye's then the light's, vertex by vertex.
+    pub fn shown(&self, scene: &Scene) -> (Vec<ShownVertex>, Vec<ShownVertex>) {
+        let show = |v: &vertex::Vertex| ShownVertex {
+            point: v.point,
+            what: match &v.kind {
+                vertex::Kind::Camera => "the eye".to_string(),
+                vertex::Kind::Light { light, toward, .. } => {
+                    let far = if toward.is_some() {
+                        " (far away, in the direction of this point)"
+                    } else {
+                        ""
+                    };
+                    match &scene.lights[*light] {
+                        crate::light::Light::Area(a) => {
+                            format!("area light on `{}`", scene.objects[a.object].name)
+                        }
+                        l => format!("{}{far}", l.kind_name()),
+                    }
+                }
+                vertex::Kind::Surface(s) => format!(
+                    "`{}` ({})",
+                    scene.objects[s.hit.object].name, scene.material_names[s.hit.material]
+                ),
+                vertex::Kind::Background => {
+                    "the background (in the direction of this point)".to_string()
+                }
+            },
+        };
+        (
+            self.camera.iter().map(show).collect(),
+            self.light.iter().map(show).collect(),
+        )
     }
 }
 

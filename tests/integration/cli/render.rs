@@ -594,4 +594,62 @@ fn light_tracing_renders_and_refuses_what_it_cannot_do() {
         "{}",
         stdout(&o)
     );
+    let pixel = ["--pixel", "8,8", "--width", "16", "--height", "16"];
+    let o = expect(
+        &[
+            &["explain", scene, "--integrator", "light", "--json"][..],
+            &pixel,
+        ]
+        .concat(),
+        &dir,
+        0,
+    );
+    let doc: serde_json::Value = serde_json::from_str(&stdout(&o)).unwrap();
+    assert_eq!(doc["integrator"], "path");
+    assert!(
+        doc["note"]
+            .as_str()
+            .unwrap()
+            .starts_with("light tracing traces no camera paths"),
+        "{doc}"
+    );
+    // Under bdpt: the sample's two subpaths, vertex by vertex, from the eye and from the
+    // light, in words and in the JSON.
+    let o = expect(
+        &[&["explain", scene, "--integrator", "bdpt"][..], &pixel].concat(),
+        &dir,
+        0,
+    );
+    let text = stdout(&o);
+    assert!(text.contains("  the eye's: the eye -> `"), "{text}");
+    assert!(
+        text.contains("  the light's: area light on `light`"),
+        "{text}"
+    );
+    let o = expect(
+        &[
+            &["explain", scene, "--integrator", "bdpt", "--json"][..],
+            &pixel,
+        ]
+        .concat(),
+        &dir,
+        0,
+    );
+    let doc: serde_json::Value = serde_json::from_str(&stdout(&o)).unwrap();
+    let (eye, light) = (
+        doc["camera_path"].as_array().unwrap(),
+        doc["light_path"].as_array().unwrap(),
+    );
+    assert_eq!(eye.len() as u64, doc["camera_vertices"].as_u64().unwrap());
+    assert_eq!(light.len() as u64, doc["light_vertices"].as_u64().unwrap());
+    assert_eq!(eye[0]["what"], "the eye");
+    // The eye at the camera's position, (0, 0, 3.9) in single precision.
+    assert_eq!(
+        eye[0]["point"],
+        serde_json::json!([0.0, 0.0, 3.9f32 as f64])
+    );
+    assert_eq!(light[0]["what"], "area light on `light`");
+    // The light's first vertex lies on the light: the rectangle at y = 0.99.
+    let y = light[0]["point"][1].as_f64().unwrap();
+    assert!((y - 0.99).abs() < 1e-4, "{doc}");
 }

@@ -18,8 +18,6 @@ use std::time::{Duration, Instant};
 
 const CHROMIUM: &str = "/usr/bin/chromium";
 const DRIVER: &str = "/usr/bin/chromedriver";
-/// The W3C name of an element reference in WebDriver's JSON.
-const ELEMENT: &str = "element-6066-11e4-a52e-4f735466cecf";
 
 /// ChromeDriver, stopped when dropped.
 struct Driver {
@@ -91,6 +89,35 @@ impl Driver {
     }
 
     /// Runs `script` in the page and returns its value.
+    /// A click on the centre of pixel `(x, y)` of the picture (`#frame`), `size` pixels
+    /// large, at its place in the viewport (in whole CSS pixels, within half of one of it).
+    fn click(&self, size: (f64, f64), (x, y): (f64, f64)) {
+        let r = self.run(
+            "const r = document.getElementById('frame').getBoundingClientRect(); return [r.left, r.top, r.width, r.height]",
+        );
+        let r: Vec<f64> = r
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|v| v.as_f64().unwrap())
+            .collect();
+        let at_x = r[0] + (x + 0.5) / size.0 * r[2];
+        let at_y = r[1] + (y + 0.5) / size.1 * r[3];
+        self.session_call(
+            "POST",
+            "/actions",
+            Some(json!({ "actions": [{
+                "type": "pointer", "id": "mouse", "parameters": { "pointerType": "mouse" },
+                "actions": [
+                    { "type": "pointerMove", "origin": "viewport", "x": at_x.round() as i64, "y": at_y.round() as i64 },
+                    { "type": "pause", "duration": 300 },
+                    { "type": "pointerDown", "button": 0 },
+                    { "type": "pointerUp", "button": 0 },
+                ],
+            }]})),
+        );
+    }
+
     fn run(&self, script: &str) -> Value {
         self.session_call(
             "POST",
@@ -125,7 +152,7 @@ fn free_port() -> u16 {
 }
 
 /// Starts ChromeDriver and a headless Chromium session; fails, never skips, without them.
-fn browser() -> Driver {
+fn browser(name: &str) -> Driver {
     assert!(
         std::path::Path::new(CHROMIUM).exists() && std::path::Path::new(DRIVER).exists(),
         "the browser test needs {CHROMIUM} and {DRIVER}: apt-get install chromium chromium-driver"
@@ -142,7 +169,7 @@ fn browser() -> Driver {
         port,
         session: String::new(),
     };
-    let profile = super::super::scratch("browser-profile");
+    let profile = super::super::scratch(&format!("browser-profile-{name}"));
     let caps = json!({ "capabilities": { "alwaysMatch": {
         "browserName": "chrome",
         "goog:chromeOptions": {
@@ -173,7 +200,7 @@ fn browser() -> Driver {
 #[test]
 #[ignore = "needs Chromium and ChromeDriver (apt-get install chromium chromium-driver): cargo test -- --include-ignored"]
 fn browser_shows_follows_and_explains() {
-    let driver = browser();
+    let driver = browser("seed");
     let dir = seed_copy("browser");
     let s = start(&dir, "scenes/seed.toml", &[]);
     let p = s.port;
@@ -265,33 +292,7 @@ fn browser_shows_follows_and_explains() {
         "return (document.getElementById('tone').value === 'clamp' && document.getElementById('progress').textContent.includes('done')) || null",
     );
     // A click on the diamond sphere (pixel 256, 380 of 512 x 512) explains it.
-    let img = driver.session_call(
-        "POST",
-        "/element",
-        Some(json!({ "using": "css selector", "value": "#frame" })),
-    );
-    let rect = driver.run(
-        "const r = document.getElementById('frame').getBoundingClientRect(); return [r.width, r.height]",
-    );
-    let (w, h) = (rect[0].as_f64().unwrap(), rect[1].as_f64().unwrap());
-    // A click on pixel (x, y) of the 512 x 512 picture: offsets from the element's centre,
-    // in CSS pixels.
-    let click = |x: f64, y: f64| {
-        let (dx, dy) = (((x + 0.5) / 512.0 - 0.5) * w, ((y + 0.5) / 512.0 - 0.5) * h);
-        driver.session_call(
-            "POST",
-            "/actions",
-            Some(json!({ "actions": [{
-                "type": "pointer", "id": "mouse", "parameters": { "pointerType": "mouse" },
-                "actions": [
-                    { "type": "pointerMove", "origin": { ELEMENT: img[ELEMENT] }, "x": dx.round() as i64, "y": dy.round() as i64 },
-                    { "type": "pause", "duration": 300 },
-                    { "type": "pointerDown", "button": 0 },
-                    { "type": "pointerUp", "button": 0 },
-                ],
-            }]})),
-        );
-    };
+    let click = |x: f64, y: f64| driver.click((512.0, 512.0), (x, y));
     click(256.0, 380.0);
     let tree = driver.wait(
         60,
@@ -418,6 +419,112 @@ fn browser_shows_follows_and_explains() {
          let n = 0; for (let i = 0; i < d.length; i += 4) if (d[i] > 0) n++; return n",
     );
     assert!(lit.as_u64().unwrap() > 100, "lit pixels: {lit}");
+}
+
+/// A click on a pixel of a bidirectionally rendered scene explains it bidirectionally: the
+/// sample's strategies and both subpaths in the tree, the eye's subpath and the light's drawn
+/// over the picture, and a ring where its light path joined to the eye lands.
+/// `SNELL_SCREENSHOT_BDPT=FILE` saves the page as it ends.
+#[test]
+#[ignore = "needs Chromium and ChromeDriver (apt-get install chromium chromium-driver): cargo test -- --include-ignored"]
+fn browser_explains_a_bidirectional_sample() {
+    let driver = browser("bdpt");
+    let dir = super::super::scratch("browser-bdpt");
+    std::fs::create_dir_all(dir.join("scenes")).unwrap();
+    std::fs::copy(
+        super::super::repo("scenes/caustics.toml"),
+        dir.join("scenes/caustics.toml"),
+    )
+    .unwrap();
+    let s = start(
+        &dir,
+        "scenes/caustics.toml",
+        &["--size", "240", "--spp", "16"],
+    );
+    let st = wait_for(s.port, 60, "the first picture", super::current_frame);
+    assert_eq!(st["integrator"], "bdpt");
+    assert_eq!(st["size"], json!([240, 180]));
+    driver.session_call(
+        "POST",
+        "/url",
+        Some(json!({ "url": format!("http://127.0.0.1:{}/", s.port) })),
+    );
+    driver.wait(
+        60,
+        "the finished picture",
+        "return document.getElementById('progress').textContent.includes('done') || null",
+    );
+    // A pixel of the table lit by the spot, explained as a click does (the page's own
+    // `explain`, called for the exact pixel: a click's place is good to a CSS pixel, and a
+    // pixel here is about one): its sample 0 joins the spot's path, which passes through the
+    // glass and the water, to the eye (s = 2, t = 1), landing elsewhere on the picture, and
+    // samples the lamp from the table (s = 1, t = 2), as `snell explain --integrator bdpt`
+    // says of it.
+    driver.run("return import('/explain.js').then((m) => m.explain([101, 150])).then(() => true)");
+    let tree = driver.wait(
+        60,
+        "the explain tree",
+        "const t = document.getElementById('tree'); return t.dataset.pixel === '101,150' ? t.textContent : null",
+    );
+    let tree = tree.as_str().unwrap();
+    for said in [
+        "(s=2, t=1) the light's path joined to the eye",
+        "(s=1, t=2) a light sampled from the eye's path",
+        "camera_path 1: `table` (table)",
+        "light_path 0: spot",
+        "light_path 2: `glass` (glass)",
+        "lands_at",
+    ] {
+        assert!(tree.contains(said), "{said}: {tree}");
+    }
+    let hint = driver.run("return document.getElementById('explain-hint').textContent");
+    assert!(
+        hint.as_str()
+            .unwrap()
+            .starts_with("Pixel (101, 150), bidirectional sample 0:"),
+        "{hint}"
+    );
+    // What is drawn is what the explain data places on the picture: each subpath a chain
+    // through its vertices the camera sees (the eye's from the pixel), and a ring for each
+    // landing.
+    let doc = super::get(s.port, "/explain?x=101&y=150").json();
+    let seen = |path: &Value| -> Vec<bool> {
+        path.as_array()
+            .unwrap()
+            .iter()
+            .map(|v| v["screen"].is_array())
+            .collect()
+    };
+    let links = |seen: &[bool]| seen.windows(2).filter(|w| w[0] && w[1]).count();
+    let eye: Vec<bool> = std::iter::once(true)
+        .chain(seen(&doc["camera_path"]).into_iter().skip(1))
+        .collect();
+    let light = seen(&doc["light_path"]);
+    let lands = doc["strategies"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|s| s["lands_at"].is_array())
+        .count();
+    let expected = json!([
+        links(&eye),
+        eye.iter().skip(1).filter(|&&b| b).count(),
+        links(&light),
+        light.iter().filter(|&&b| b).count(),
+        lands
+    ]);
+    let drawn = driver.run(
+        "return ['ray', 'hit', 'light-ray', 'light-hit', 'lands'].map((c) => document.querySelectorAll(`#overlay .${c}`).length)",
+    );
+    assert_eq!(
+        drawn, expected,
+        "eye's segments and hits, the light's, landings"
+    );
+    assert!(lands >= 1 && links(&light) >= 3, "{doc}");
+    if let Ok(path) = std::env::var("SNELL_SCREENSHOT_BDPT") {
+        let png = driver.session_call("GET", "/screenshot", None);
+        std::fs::write(path, base64(png.as_str().unwrap())).unwrap();
+    }
 }
 
 /// Standard base64, for the screenshot WebDriver sends.

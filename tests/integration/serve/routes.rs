@@ -605,6 +605,21 @@ fn a_bdpt_scene_is_previewed_bidirectionally() {
         (shown - png).abs() < 1.0,
         "the page's picture {shown}, the PNG {png}"
     );
+    // A pixel is explained bidirectionally, as `snell explain --integrator bdpt` does: the
+    // sample's strategies and its two subpaths, whose first hit lies on the picture within
+    // the filter's reach of the pixel.
+    let ex = get(s.port, "/explain?x=24&y=30");
+    assert_eq!(ex.status, 200, "{}", ex.text());
+    let doc = ex.json();
+    assert_eq!(doc["integrator"], "bdpt");
+    assert!(doc["strategies"].is_array(), "{doc}");
+    let eye = doc["camera_path"].as_array().unwrap();
+    assert_eq!(eye[0]["what"], "the eye");
+    assert!(eye[0]["screen"].is_null(), "{doc}");
+    let hit = &eye[1]["screen"];
+    let (x, y) = (hit[0].as_f64().unwrap(), hit[1].as_f64().unwrap());
+    assert!((x - 24.5).abs() < 2.0 && (y - 30.5).abs() < 2.0, "{hit}");
+    assert!(!doc["light_path"].as_array().unwrap().is_empty(), "{doc}");
 }
 
 /// A path-traced preview with `--noise` samples adaptively, as `render --noise` does: it

@@ -1,6 +1,7 @@
 // Pixels explained: the pixel under the pointer, the hover that names what is there (from
 // `/pick`), and a click's `/explain` answer shown as a tree of rays beside the picture, its
-// hit points drawn over the picture.
+// hit points drawn over the picture (a bidirectional sample's two subpaths and where its
+// light paths land).
 
 import { $, img, overlay, SVG, state, fmt } from './state.js';
 import { explainPaths } from './paths.js';
@@ -69,6 +70,15 @@ function kv(parent, k, v) {
   parent.append(d);
 }
 
+// What a bidirectional strategy is: `s` vertices of the light's subpath joined to `t` of
+// the eye's.
+function strategy(o) {
+  if (o.s === 0) return "the eye's path found the light";
+  if (o.s === 1) return "a light sampled from the eye's path";
+  if (o.t === 1) return "the light's path joined to the eye";
+  return 'the two paths joined';
+}
+
 // A summary line for an object of the explain data.
 function title(o, name) {
   if (o.kind && 'depth' in o) {
@@ -78,6 +88,8 @@ function title(o, name) {
   if ('object' in o && 'bsdf' in o) return `vertex ${o.depth}: ${o.object} (${o.material}), ${o.bsdf}`;
   if ('blocked_by' in o || 'crossings' in o) return o.blocked_by ? `shadow: blocked by ${o.blocked_by}` : 'shadow';
   if ('light' in o && 'contribution' in o && 'direction' in o) return `light ${o.light}${o.what ? ` (${o.what})` : ''}`;
+  if ('s' in o && 't' in o && 'weight' in o) return `(s=${o.s}, t=${o.t}) ${strategy(o)}, weight ${fmt(o.weight, 3)}`;
+  if ('what' in o && 'point' in o) return `${name}: ${o.what}`;
   return name;
 }
 
@@ -96,7 +108,7 @@ function tree(parent, o, name, open) {
     // Drawn on the picture, said in the title, or nothing to say.
     if (k === 'screen' || v === null || (Array.isArray(v) && v.length === 0)) continue;
     if (Array.isArray(v) && v.length && typeof v[0] === 'object' && v[0] !== null) {
-      v.forEach((item, i) => tree(d, item, `${k} ${i}`, k === 'children' || k === 'vertices'));
+      v.forEach((item, i) => tree(d, item, `${k} ${i}`, k === 'children' || k === 'vertices' || k === 'strategies'));
     } else if (v && typeof v === 'object' && !Array.isArray(v)) {
       tree(d, v, k, k === 'hit' || k === 'tree' || k === 'path');
     } else {
@@ -123,6 +135,41 @@ function points(o, from, out) {
   }
 }
 
+function line(a, b, cls) {
+  const l = document.createElementNS(SVG, 'line');
+  l.setAttribute('class', cls);
+  l.setAttribute('x1', a[0]); l.setAttribute('y1', a[1]);
+  l.setAttribute('x2', b[0]); l.setAttribute('y2', b[1]);
+  overlay.append(l);
+}
+
+function dot(at, cls, r) {
+  const d = document.createElementNS(SVG, 'circle');
+  d.setAttribute('class', cls);
+  d.setAttribute('cx', at[0]); d.setAttribute('cy', at[1]); d.setAttribute('r', r);
+  overlay.append(d);
+}
+
+// A subpath as a chain of segments from `start` (null: its first vertex), each vertex the
+// camera does not see leaving a gap.
+function chain(vertices, start, cls) {
+  let from = start;
+  for (const v of vertices) {
+    const at = Array.isArray(v.screen) ? v.screen : null;
+    if (from && at) line(from, at, cls);
+    if (at) dot(at, cls === 'ray' ? 'hit' : 'light-hit', 3);
+    from = at;
+  }
+}
+
+// A bidirectional sample: the eye's subpath from the pixel, the light's from the light, and
+// a ring where each of its light paths joined to the eye lands.
+function drawBdpt(doc, start) {
+  chain(doc.camera_path.slice(1), start, 'ray');
+  chain(doc.light_path, null, 'light-ray');
+  for (const st of doc.strategies) if (Array.isArray(st.lands_at)) dot(st.lands_at, 'lands', 4);
+}
+
 function draw(doc, pixel) {
   overlay.replaceChildren();
   const start = [pixel[0] + 0.5, pixel[1] + 0.5];
@@ -133,6 +180,7 @@ function draw(doc, pixel) {
   mark.setAttribute('width', 5);
   mark.setAttribute('height', 5);
   overlay.append(mark);
+  if (doc.integrator === 'bdpt') { drawBdpt(doc, start); return; }
   const segs = [];
   points(doc.tree || doc.path, start, segs);
   for (const [a, b] of segs) {
@@ -156,9 +204,18 @@ export async function explain(p) {
   const box = $('tree');
   if (!r.ok) { box.textContent = await r.text(); return; }
   const doc = await r.json();
-  $('explain-hint').textContent = `Pixel (${p[0]}, ${p[1]}), ${doc.integrator === 'path' ? `the path of sample ${doc.sample}` : 'the ray through its centre'}: colour ${vec(doc.color)}.`;
+  const what = {
+    path: `the path of sample ${doc.sample}`,
+    bdpt: `bidirectional sample ${doc.sample}: the eye's subpath (yellow), the light's (blue), where its light paths joined to the eye land (rings)`,
+  }[doc.integrator] || 'the ray through its centre';
+  $('explain-hint').textContent = `Pixel (${p[0]}, ${p[1]}), ${what}: colour ${vec(doc.color)}.${doc.note ? ` (${doc.note})` : ''}`;
   box.replaceChildren();
-  tree(box, doc.tree || doc.path, doc.tree ? 'tree' : 'path', true);
+  if (doc.integrator === 'bdpt') {
+    const { strategies, camera_path, light_path } = doc;
+    tree(box, { strategies, camera_path, light_path }, 'sample', true);
+  } else {
+    tree(box, doc.tree || doc.path, doc.tree ? 'tree' : 'path', true);
+  }
   box.dataset.pixel = `${p[0]},${p[1]}`;
   draw(doc, p);
   explainPaths(p);
