@@ -8,7 +8,7 @@ use crate::Scene;
 use crate::integrator::explain::{RayNode, TreeRecorder};
 use crate::integrator::path_explain::PathRecord;
 use crate::integrator::{Path, RayStats, Whitted};
-use crate::math::{Color, Vec2, Vec3A};
+use crate::math::{Color, Vec3A};
 use serde_json::{Value, json};
 
 /// A Whitted sample explained: where it lies on the film, the colour it returns, the rays it
@@ -25,24 +25,30 @@ pub struct WhittedExplained {
     pub tree: RayNode,
 }
 
-/// The Whitted tree of the ray through film position `film` (and the lens at `lens`, if the
-/// camera has one; its centre without), recording at most `max_rays` rays; `None` when
-/// nothing was recorded.
+/// The Whitted tree of the ray through film position `film`, recording at most `max_rays`
+/// rays; `None` when nothing was recorded. `sample`, `((x, y), k)`, says the ray is sample
+/// `k` of pixel `(x, y)` as the render takes it: then it passes through the camera's lens
+/// where the render's sample does, and follows its wavelength through dispersive glass;
+/// `None` for a ray through a pixel's centre (and the lens's).
 pub fn whitted(
     scene: &Scene,
     film: (f32, f32),
-    lens: Option<Vec2>,
+    sample: Option<((u32, u32), u32)>,
     max_rays: usize,
 ) -> Option<WhittedExplained> {
     let s = &scene.settings;
     let camera = scene.camera.raster(s.width, s.height);
-    let ray = match lens {
-        Some(u) => camera.ray_lens(film.0, film.1, u),
+    let ray = match sample {
+        Some(((x, y), k)) => camera.ray_lens(
+            film.0,
+            film.1,
+            crate::render::whitted_lens_sample(s, x, y, k),
+        ),
         None => camera.ray(film.0, film.1),
     };
     let mut rec = TreeRecorder::new(max_rays);
     let mut rays = RayStats::default();
-    let color = Whitted.explain(scene, &ray, &mut rays, &mut rec);
+    let color = Whitted.explain_sample(scene, &ray, sample, &mut rays, &mut rec);
     rec.finish().map(|tree| WhittedExplained {
         film,
         color,

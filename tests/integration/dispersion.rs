@@ -243,3 +243,60 @@ fn the_prism_scene_splits_white_light_in_order() {
     let (red_x, blue_x) = (red.0 / red.1, blue.0 / blue.1);
     assert!(red_x - blue_x > 4.0, "red at x = {red_x}, blue at {blue_x}");
 }
+
+/// `snell explain --sample K` of a pixel seen through dispersive glass under Whitted follows
+/// the wavelength the render gave that sample: the mean of a pixel's samples explained is
+/// the rendered pixel, to rounding. A ray through a pixel's centre, which is no sample,
+/// follows a wavelength of its own, and through the glass its colour is another.
+#[test]
+fn whitted_explains_each_sample_at_the_renders_wavelength() {
+    let scene = scene(
+        "[image]\nwidth = 12\nheight = 12\nsamples = 4\nmax_depth = 8\nbackground = 0\n\
+         filter = { type = \"box\" }\n\
+         [camera]\nposition = [0, 0, 6]\nlook_at = [0, 0, 0]\nfov = 20\n\
+         [materials.diamond]\ntype = \"dielectric\"\nior = \"diamond\"\n\
+         [textures.stripes]\ntype = \"stripes\"\na = [1, 0.1, 0.1]\nb = [0.1, 0.2, 1]\nwidth = 0.15\n\
+         mapping = { type = \"planar\", u = [1, 0, 0], v = [0, 1, 0] }\n\
+         [materials.stripes]\ntype = \"diffuse\"\ntexture = \"stripes\"\n\
+         [[lights]]\ntype = \"point\"\nposition = [0, 0, 8]\nintensity = 80\n\
+         [[objects]]\ntype = \"sphere\"\ncenter = [0, 0, 0]\nradius = 0.9\nmaterial = \"diamond\"\n\
+         [[objects]]\ntype = \"rectangle\"\ncorner = [-6, -6, -3]\nedge_u = [12, 0, 0]\nedge_v = [0, 12, 0]\nmaterial = \"stripes\"\n",
+    );
+    assert!(scene.disperses());
+    let img = render_with(&scene, &Whitted, &two_threads(), None)
+        .unwrap()
+        .image;
+    let s = &scene.settings;
+    let (mut checked, mut centre_differs) = (0, 0);
+    for y in 0..s.height {
+        for x in 0..s.width {
+            let mut films = vec![];
+            snell::render::for_each_sample(s, x, y, |px, py, _| films.push((px, py)));
+            assert_eq!(films.len(), 4);
+            let mut sum = Color::ZERO;
+            for (k, &film) in films.iter().enumerate() {
+                let sample = Some(((x, y), k as u32));
+                sum += snell::explain_pixel::whitted(&scene, film, sample, 10_000)
+                    .unwrap()
+                    .color;
+            }
+            let (explained, rendered) = (sum / 4.0, img.get(x, y));
+            assert!(
+                (explained - rendered).abs().max_element() <= 1e-5 * rendered.max_element() + 1e-7,
+                "pixel {x},{y}: explained {explained}, rendered {rendered}"
+            );
+            // The same rays at the wavelengths of rays that are no samples.
+            let mut other = Color::ZERO;
+            for &film in &films {
+                other += snell::explain_pixel::whitted(&scene, film, None, 10_000)
+                    .map_or(Color::ZERO, |e| e.color);
+            }
+            if ((other / 4.0) - rendered).abs().max_element() > 1e-3 {
+                centre_differs += 1;
+            }
+            checked += 1;
+        }
+    }
+    assert_eq!(checked, 144);
+    assert!(centre_differs >= 10, "{centre_differs} pixels");
+}

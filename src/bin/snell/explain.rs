@@ -79,10 +79,8 @@ pub(crate) fn explain(args: ExplainArgs) -> ExitCode {
     if path {
         return explain_path(&args, &scene, args.sample.unwrap_or(0));
     }
-    let lens = args
-        .sample
-        .map(|k| snell::render::whitted_lens_sample(s, x, y, k));
-    let Some(explained) = snell::explain_pixel::whitted(&scene, film, lens, args.max_rays) else {
+    let sample = args.sample.map(|k| ((x, y), k));
+    let Some(explained) = snell::explain_pixel::whitted(&scene, film, sample, args.max_rays) else {
         eprintln!("error: no ray was recorded");
         return ExitCode::from(1);
     };

@@ -190,10 +190,25 @@ impl Whitted {
         rays: &mut RayStats,
         rec: &mut impl Recorder,
     ) -> Color {
-        let u = if scene.disperses() {
-            ray_wavelength_number(ray)
-        } else {
-            0.0
+        self.explain_sample(scene, ray, None, rays, rec)
+    }
+
+    /// [`Whitted::explain`] for a camera ray that is sample `k` of pixel `(x, y)`
+    /// (`sample`: `((x, y), k)`), which then follows the wavelength the render gives that
+    /// sample in a scene with dispersive glass; `None` for a ray that is no sample (one
+    /// through a pixel's centre).
+    pub fn explain_sample(
+        &self,
+        scene: &Scene,
+        ray: &Ray,
+        sample: Option<((u32, u32), u32)>,
+        rays: &mut RayStats,
+        rec: &mut impl Recorder,
+    ) -> Color {
+        let u = match sample {
+            _ if !scene.disperses() => 0.0,
+            Some(((x, y), k)) => wavelength_number(wavelength_start(x, y), k),
+            None => ray_wavelength_number(ray),
         };
         self.trace_from(scene, ray, &Segment::camera(scene, ray, u), rays, rec)
     }
@@ -623,8 +638,8 @@ fn light_record(
 }
 
 /// A number in `[0, 1)` from a camera ray's bits, for the wavelength its tree follows where
-/// the ray is not one of a pixel's samples (`snell explain`'s, [`Whitted::trace`]'s): the
-/// same ray always gets the same one.
+/// the ray is not one of a pixel's samples (`snell explain`'s ray through a pixel's centre,
+/// [`Whitted::trace`]'s): the same ray always gets the same one.
 fn ray_wavelength_number(ray: &Ray) -> f32 {
     let bits = |v: Vec3A| v.to_array().map(|x| x.to_bits() as u64);
     let [a, b, c] = bits(ray.dir);
