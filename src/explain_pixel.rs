@@ -312,7 +312,7 @@ fn shown(v: &[crate::integrator::ShownVertex]) -> Vec<Value> {
 
 /// What the preview shows for a click on pixel `(x, y)`, as `snell explain --json` gives
 /// it for the scene's integrator: under Whitted the ray through the pixel's centre (at most
-/// `max_rays` of its tree), under the path tracer the path of sample 0, under bdpt sample
+/// `max_rays` of its tree; the render's sample 0 where a pixel takes one), under the path tracer the path of sample 0, under bdpt sample
 /// 0's two subpaths and its strategies, and under light tracing (which traces no camera
 /// paths) the path tracer's path, said so in its `note`; each point with its place on the
 /// picture ([`place_on_picture`]). `None` when nothing was recorded.
@@ -326,7 +326,9 @@ pub fn pixel_json(
     let mut doc = match scene.settings.integrator.kind {
         IntegratorKind::Whitted => {
             let film = (x as f32 + 0.5, y as f32 + 0.5);
-            whitted(scene, film, None, max_rays)?.to_json(scene, scene_path, (x, y), None)
+            // With one sample a pixel, that ray is the render's sample 0.
+            let sample = (scene.settings.spp == 1).then_some(((x, y), 0));
+            whitted(scene, film, sample, max_rays)?.to_json(scene, scene_path, (x, y), None)
         }
         IntegratorKind::Bdpt => bdpt(scene, (x, y), 0).to_json(scene, scene_path),
         IntegratorKind::Path | IntegratorKind::Light => {

@@ -295,7 +295,8 @@ fn run_waiting(
 /// `snell explain --json`'s document for pixel `(x, y)`, as text: under the path tracer the
 /// path of sample `sample` (0 by default; light tracing's scene by the path tracer's path,
 /// said so in its `note`), under bdpt that sample's two subpaths and strategies, under
-/// Whitted the ray through the pixel's centre with at most `max_rays` of its tree.
+/// Whitted sample `sample` or by default the ray through the pixel's centre, with at most
+/// `max_rays` of its tree. A sample past the pixel's last is refused.
 #[pyfunction]
 #[pyo3(signature = (scene, x, y, sample=None, max_rays=200))]
 pub fn explain(
@@ -313,20 +314,43 @@ pub fn explain(
             "pixel ({x}, {y}) is outside the {w} x {h} image"
         )));
     }
+    if let Some(k) = sample
+        && k >= sc.settings.spp
+    {
+        return Err(errors::value(format!(
+            "sample {k} does not exist: the pixel has {} sample(s), 0 to {}",
+            sc.settings.spp,
+            sc.settings.spp - 1
+        )));
+    }
     let path: &Path = &scene.path;
-    let doc = py.detach(|| {
-        let mut doc = match (sc.settings.integrator.kind, sample) {
-            (IntegratorKind::Path | IntegratorKind::Light, Some(k)) => {
-                snell::explain_pixel::path(sc, (x, y), k).to_json(sc, path)
-            }
-            (IntegratorKind::Bdpt, Some(k)) => {
-                snell::explain_pixel::bdpt(sc, (x, y), k).to_json(sc, path)
-            }
-            _ => return snell::explain_pixel::pixel_json(sc, path, (x, y), max_rays),
-        };
-        snell::explain_pixel::place_on_picture(&mut doc, sc);
-        Some(doc)
-    });
+    let doc =
+        py.detach(|| {
+            let mut doc =
+                match (sc.settings.integrator.kind, sample) {
+                    (IntegratorKind::Whitted, Some(k)) => {
+                        let mut film = (0.0, 0.0);
+                        let mut i = 0;
+                        snell::render::for_each_sample(&sc.settings, x, y, |px, py, _| {
+                            if i == k {
+                                film = (px, py);
+                            }
+                            i += 1;
+                        });
+                        snell::explain_pixel::whitted(sc, film, Some(((x, y), k)), max_rays)?
+                            .to_json(sc, path, (x, y), Some(k))
+                    }
+                    (IntegratorKind::Path | IntegratorKind::Light, Some(k)) => {
+                        snell::explain_pixel::path(sc, (x, y), k).to_json(sc, path)
+                    }
+                    (IntegratorKind::Bdpt, Some(k)) => {
+                        snell::explain_pixel::bdpt(sc, (x, y), k).to_json(sc, path)
+                    }
+                    _ => return snell::explain_pixel::pixel_json(sc, path, (x, y), max_rays),
+                };
+            snell::explain_pixel::place_on_picture(&mut doc, sc);
+            Some(doc)
+        });
     let doc = doc.ok_or_else(|| errors::value("nothing was recorded for that pixel"))?;
     Ok(doc.to_string())
 }

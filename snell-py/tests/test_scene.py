@@ -132,6 +132,16 @@ def test_explain_is_the_command_lines_document(repo, run_cli):
         snell.explain(scene, 5000, 0)
     path = snell.explain(snell.load(repo / "scenes/cornell.toml"), 256, 256, sample=2)
     assert path["integrator"] == "path" and path["sample"] == 2
+    with pytest.raises(ValueError, match="sample 64 does not exist"):
+        snell.explain(snell.load(repo / "scenes/cornell.toml"), 256, 256, sample=64)
+    # Under Whitted, a sample as the renderer takes it, as the command line gives it.
+    seed16 = snell.load(repo / "scenes/seed.toml")
+    seed16.image["samples"] = 16
+    one = snell.explain(seed16, 512, 600, sample=5)
+    cli = json.loads(
+        run_cli("explain", repo / "scenes/seed.toml", "--pixel", "512,600", "--spp", "16", "--sample", "5", "--json").stdout
+    )
+    assert one["sample"] == 5 and unplaced(one) == cli
     # Under bdpt, the sample's subpaths and strategies, as the command line gives them.
     caustics = repo / "scenes/caustics.toml"
     bd = snell.explain(snell.load(caustics), 240, 300, sample=1)

@@ -145,7 +145,8 @@ def explain(
     max_rays: int = 200,
 ) -> Dict[str, Any]:
     """Why pixel (`x`, `y`) has its colour: the document `snell explain --json` prints, as
-    a dict. Under Whitted, the tree of rays through the pixel's centre (at most `max_rays`);
+    a dict. Under Whitted, the tree of rays through the pixel's centre, or of sample `sample`
+    as the renderer takes it (at most `max_rays` rays);
     under the path tracer, the path of sample `sample` (0 unless given), every vertex with
     what it added (under light tracing, which traces no camera paths, the same, said so in
     its `note`); under bdpt, that sample's two subpaths and its strategies. Each hit `point`

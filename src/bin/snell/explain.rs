@@ -79,7 +79,12 @@ pub(crate) fn explain(args: ExplainArgs) -> ExitCode {
     if path {
         return explain_path(&args, &scene, args.sample.unwrap_or(0));
     }
-    let sample = args.sample.map(|k| ((x, y), k));
+    // With one sample a pixel, the ray through its centre is the render's sample 0 (its
+    // lens point and wavelength too).
+    let sample = args
+        .sample
+        .or((s.spp == 1).then_some(0))
+        .map(|k| ((x, y), k));
     let Some(explained) = snell::explain_pixel::whitted(&scene, film, sample, args.max_rays) else {
         eprintln!("error: no ray was recorded");
         return ExitCode::from(1);

@@ -1,6 +1,7 @@
 //! The preview in a real browser: headless Chromium, driven by ChromeDriver over WebDriver,
 //! opens the page, waits for a picture, sees it change when the scene is saved, clicks the
-//! diamond sphere and finds the refraction in the explain tree.
+//! diamond sphere and finds the refraction in the explain tree, and explains a pixel of a
+//! bidirectional render with both its subpaths drawn.
 //!
 //! It needs Debian's `chromium` and `chromium-driver` (`apt-get install chromium
 //! chromium-driver`), so plain `cargo test` lists it as ignored, and `cargo test --
@@ -88,7 +89,6 @@ impl Driver {
             .unwrap_or_else(|e| panic!("WebDriver {method} {path}: {e}"))
     }
 
-    /// Runs `script` in the page and returns its value.
     /// A click on the centre of pixel `(x, y)` of the picture (`#frame`), `size` pixels
     /// large, at its place in the viewport (in whole CSS pixels, within half of one of it).
     fn click(&self, size: (f64, f64), (x, y): (f64, f64)) {
@@ -118,6 +118,7 @@ impl Driver {
         );
     }
 
+    /// Runs `script` in the page and returns its value.
     fn run(&self, script: &str) -> Value {
         self.session_call(
             "POST",
@@ -439,7 +440,7 @@ fn browser_explains_a_bidirectional_sample() {
     let s = start(
         &dir,
         "scenes/caustics.toml",
-        &["--size", "240", "--spp", "16"],
+        &["--size", "240", "--spp", "4"],
     );
     let st = wait_for(s.port, 60, "the first picture", super::current_frame);
     assert_eq!(st["integrator"], "bdpt");

@@ -472,9 +472,11 @@ pub(super) fn scene_and_pixel(
     }
 }
 
-/// The explain data of a pixel: the Whitted tree of the ray through its centre, or the path
-/// of sample 0 under the path tracer, as `snell explain --json` gives them, with each hit
-/// point's place on the picture (`screen`) for drawing.
+/// The explain data of a pixel, as `snell explain --json` gives it for the scene's
+/// integrator (`explain_pixel::pixel_json`): the Whitted tree of the ray through its centre,
+/// the path of sample 0 under the path tracer (and under light tracing, with a `note` that
+/// says so), or bdpt's sample 0, with each point's place on the picture (`screen`) for
+/// drawing.
 async fn explain(State(ctx): Ctx, q: Asked<PixelQuery>) -> Response {
     let (scene, x, y) = match scene_and_pixel(&ctx, q) {
         Ok(v) => v,

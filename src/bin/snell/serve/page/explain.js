@@ -162,6 +162,14 @@ function chain(vertices, start, cls) {
   }
 }
 
+// What the picture shows of a bidirectional sample, in words: each part that is there.
+function bdptDrawn(doc) {
+  const parts = ["the eye's subpath (yellow)"];
+  if (doc.light_path.length) parts.push(`the light's (blue; a light sampled from the eye's path is a point of its own)`);
+  if (doc.strategies.some((s) => Array.isArray(s.lands_at))) parts.push('where its light paths joined to the eye land (rings)');
+  return parts.join(', ');
+}
+
 // A bidirectional sample: the eye's subpath from the pixel, the light's from the light, and
 // a ring where each of its light paths joined to the eye lands.
 function drawBdpt(doc, start) {
@@ -183,19 +191,8 @@ function draw(doc, pixel) {
   if (doc.integrator === 'bdpt') { drawBdpt(doc, start); return; }
   const segs = [];
   points(doc.tree || doc.path, start, segs);
-  for (const [a, b] of segs) {
-    const line = document.createElementNS(SVG, 'line');
-    line.setAttribute('class', 'ray');
-    line.setAttribute('x1', a[0]); line.setAttribute('y1', a[1]);
-    line.setAttribute('x2', b[0]); line.setAttribute('y2', b[1]);
-    overlay.append(line);
-  }
-  for (const [, b] of segs) {
-    const dot = document.createElementNS(SVG, 'circle');
-    dot.setAttribute('class', 'hit');
-    dot.setAttribute('cx', b[0]); dot.setAttribute('cy', b[1]); dot.setAttribute('r', 3);
-    overlay.append(dot);
-  }
+  for (const [a, b] of segs) line(a, b, 'ray');
+  for (const [, b] of segs) dot(b, 'hit', 3);
 }
 
 // Asks the server why pixel `p` has its colour, and shows the answer.
@@ -205,14 +202,19 @@ export async function explain(p) {
   if (!r.ok) { box.textContent = await r.text(); return; }
   const doc = await r.json();
   const what = {
-    path: `the path of sample ${doc.sample}`,
-    bdpt: `bidirectional sample ${doc.sample}: the eye's subpath (yellow), the light's (blue), where its light paths joined to the eye land (rings)`,
-  }[doc.integrator] || 'the ray through its centre';
+    path: () => `the path of sample ${doc.sample}`,
+    bdpt: () => `bidirectional sample ${doc.sample}: ${bdptDrawn(doc)}`,
+  }[doc.integrator]?.() || 'the ray through its centre';
   $('explain-hint').textContent = `Pixel (${p[0]}, ${p[1]}), ${what}: colour ${vec(doc.color)}.${doc.note ? ` (${doc.note})` : ''}`;
   box.replaceChildren();
   if (doc.integrator === 'bdpt') {
     const { strategies, camera_path, light_path } = doc;
     tree(box, { strategies, camera_path, light_path }, 'sample', true);
+    if (!strategies.length) {
+      const none = document.createElement('p');
+      none.textContent = 'No strategy carried light: the sample adds nothing to any pixel.';
+      box.append(none);
+    }
   } else {
     tree(box, doc.tree || doc.path, doc.tree ? 'tree' : 'path', true);
   }
