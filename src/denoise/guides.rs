@@ -20,11 +20,14 @@
 //! would give them.
 
 use crate::math::{Color, Frame, Ray, Vec2, Vec3A, offset_ray_origin};
-use crate::render::{RenderError, RenderOptions, camera_ray, start_sample};
+use crate::render::{
+    RenderError, RenderOptions, camera_ray, for_each_sample, start_sample, whitted_lens_sample,
+};
 use crate::sampler::Sampler;
 use crate::scene::{Scene, Skip};
 
-/// Samples a pixel's guides take at most (fewer where the render takes fewer).
+/// Samples a pixel's guides take at most (fewer where the render takes fewer), where the
+/// render takes its samples from a sampler; Whitted's guides take all its strata.
 pub const GUIDE_SAMPLES: u32 = 16;
 
 /// Samples a pixel on a light's edge takes for [`Guides::sharp_light`].
@@ -72,22 +75,40 @@ struct GuideSample {
 /// scene asks), on `options.threads` (through the render loop every render takes, so its
 /// tiles, threads and cancellation are the picture's). The light seen emitted is taken over
 /// the picture's own first samples (up to [`EDGE_SAMPLES`] on an edge, [`GUIDE_SAMPLES`]
-/// elsewhere, where it changes too little to matter), so that the picture less that light
-/// is what it reflects.
+/// elsewhere, where it changes too little to matter; under Whitted over all its strata),
+/// so that the picture less that light is what it reflects.
 pub fn guides(scene: &Scene, samples: u32, options: &RenderOptions) -> Result<Guides, RenderError> {
     let s = &scene.settings;
     let (width, height) = (s.width, s.height);
     let mut film: crate::film::Film<GuideSample> = crate::film::Film::new(width, height);
     let camera = scene.camera.raster(width, height);
-    // Samples `samples` of pixel (x, y), as the render places them, averaged with their
-    // filter weights.
-    let average = |x: u32, y: u32, samples: std::ops::Range<u32>| {
+    // Whitted's samples are the strata of an n x n grid, all of them in every picture
+    // (`for_each_sample`), not a sampler's sequence: its guides and its light are taken over
+    // the very strata its picture took, so that the light taken out is the light in it.
+    let whitted = s.integrator.kind == crate::scene::IntegratorKind::Whitted;
+    // Samples `samples` of pixel (x, y), as the render places them (`as_rendered`; else, for
+    // the light taken again on an edge, the sampler's, for any integrator), averaged with
+    // their filter weights.
+    let average = |x: u32, y: u32, samples: std::ops::Range<u32>, as_rendered: bool| {
         let mut sampler = Sampler::new(s.integrator.sampler, s.seed);
         let (mut albedo, mut normal, mut weight) = (Color::ZERO, Vec3A::ZERO, 0.0f32);
         let mut light = Color::ZERO;
+        let mut strata = Vec::new();
+        if whitted && as_rendered {
+            for_each_sample(s, x, y, |px, py, sign| strata.push((px, py, sign)));
+        }
         for index in samples {
-            let (px, py, sign) = start_sample(s, &mut sampler, x, y, index);
-            let ray = camera_ray(&camera, &mut sampler, px, py);
+            let (ray, sign) = match strata.get(index as usize) {
+                Some(&(px, py, sign)) if camera.has_lens() => (
+                    camera.ray_lens(px, py, whitted_lens_sample(s, x, y, index)),
+                    sign,
+                ),
+                Some(&(px, py, sign)) => (camera.ray(px, py), sign),
+                None => {
+                    let (px, py, sign) = start_sample(s, &mut sampler, x, y, index);
+                    (camera_ray(&camera, &mut sampler, px, py), sign)
+                }
+            };
             let g = follow(scene, ray);
             albedo += g.albedo * sign;
             normal += g.normal * sign;
@@ -104,8 +125,13 @@ pub fn guides(scene: &Scene, samples: u32, options: &RenderOptions) -> Result<Gu
             GuideSample::default()
         }
     };
-    let n = samples.clamp(1, GUIDE_SAMPLES);
-    let work = |x: u32, y: u32, out: &mut GuideSample, _: &mut ()| *out = average(x, y, 0..n);
+    // Whitted's picture takes all its strata, and so do its guides.
+    let n = if whitted {
+        samples.max(1)
+    } else {
+        samples.clamp(1, GUIDE_SAMPLES)
+    };
+    let work = |x: u32, y: u32, out: &mut GuideSample, _: &mut ()| *out = average(x, y, 0..n, true);
     crate::render::for_each_tile(&mut film, options, |_| false, work, |_, _| {})?;
     let rows = film.into_rows();
     let first: Vec<Color> = rows.iter().map(|g| g.light).collect();
@@ -120,11 +146,11 @@ pub fn guides(scene: &Scene, samples: u32, options: &RenderOptions) -> Result<Gu
         *out = if samples == 0 {
             EdgeLight::default()
         } else if edges[i] {
-            let sharp = average(x, y, 0..EDGE_SAMPLES).light;
+            let sharp = average(x, y, 0..EDGE_SAMPLES, false).light;
             let taken = match samples {
-                s if s <= GUIDE_SAMPLES => first[i],
+                s if s <= n => first[i],
                 s if s >= EDGE_SAMPLES => sharp,
-                s => average(x, y, 0..s).light,
+                s => average(x, y, 0..s, true).light,
             };
             EdgeLight { taken, sharp }
         } else {
@@ -432,6 +458,37 @@ mod tests {
                 .chain(&none.sharp_light)
                 .all(|l| *l == Color::ZERO)
         );
+        // Under Whitted, whose samples are the strata of a grid, the light taken out is its
+        // picture's too, over those strata (16 and 64 of them), where the sampler's film
+        // positions would place the edge elsewhere in its pixels.
+        let mut compared = 0;
+        for spp in [16, 64] {
+            let mut picture = scene.clone();
+            picture.settings.spp = spp;
+            picture.settings.integrator.kind = crate::scene::IntegratorKind::Whitted;
+            let light = guides(&picture, spp, &options()).unwrap().light;
+            let img =
+                crate::render::render(&picture, &crate::integrator::Whitted, Some(2), &|_| {})
+                    .unwrap()
+                    .image;
+            let mut apart = 0;
+            for ((p, l), sampled) in img.pixels.iter().zip(&light).zip(&g.light) {
+                assert!(
+                    (*p - *l).abs().max_element() < 1e-5,
+                    "Whitted, {spp} spp: {p:?} against {l:?}"
+                );
+                if (*p - *sampled).abs().max_element() > 1e-3 {
+                    apart += 1;
+                }
+                compared += 1;
+            }
+            // At the edge, the path tracer's placement of the same 16 samples (what was
+            // taken out of a Whitted picture before) gives other light.
+            if spp == 16 {
+                assert!(apart >= 4, "{apart} edge pixels apart");
+            }
+        }
+        assert_eq!(compared, 192);
         // The edge's column and its neighbours, all eight rows.
         assert!(edge >= 8, "{edge} pixels taken again");
         assert!(
