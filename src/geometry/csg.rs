@@ -360,11 +360,13 @@ mod tests {
     /// a miss of both the solid and the marching checks nothing.
     #[test]
     fn hits_agree_with_marching_contains() {
-        use proptest::test_runner::{Config, TestRunner};
+        use proptest::test_runner::{Config, RngSeed, TestRunner};
         use std::cell::Cell;
         let (cases, hits) = (Cell::new(0u32), Cell::new(0u32));
+        // The same rays on every run, so that CI's verdict does not depend on the draw.
         let mut runner = TestRunner::new(Config {
-            source_file: Some(file!()),
+            rng_seed: RngSeed::Fixed(0xc59),
+            failure_persistence: None,
             ..Config::default()
         });
         let result = runner.run(
@@ -410,7 +412,7 @@ mod tests {
         if let Err(e) = result {
             panic!("{e}\n{runner}");
         }
-        // Every case the runner asked for (and any failure saved from an earlier run).
+        // Every case the runner asked for.
         let (cases, hits) = (cases.get(), hits.get());
         assert!(cases >= runner.config().cases, "{cases} cases");
         // Half the targets lie inside the solid (the cube is 58 % of their box, the two
