@@ -329,14 +329,7 @@ pub fn explain(
             let mut doc =
                 match (sc.settings.integrator.kind, sample) {
                     (IntegratorKind::Whitted, Some(k)) => {
-                        let mut film = (0.0, 0.0);
-                        let mut i = 0;
-                        snell::render::for_each_sample(&sc.settings, x, y, |px, py, _| {
-                            if i == k {
-                                film = (px, py);
-                            }
-                            i += 1;
-                        });
+                        let film = snell::render::sample_position(&sc.settings, x, y, k)?;
                         snell::explain_pixel::whitted(sc, film, Some(((x, y), k)), max_rays)?
                             .to_json(sc, path, (x, y), Some(k))
                     }

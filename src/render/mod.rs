@@ -28,7 +28,9 @@ pub use crate::film::Region;
 pub use crate::film::TILE;
 pub use aov::render_aovs;
 pub use pass::{PassError, PassStats, render_pass, render_pass_adaptive, render_pass_to};
-pub use pixel::{PixelJob, camera_ray, for_each_sample, start_sample, whitted_lens_sample};
+pub use pixel::{
+    PixelJob, camera_ray, for_each_sample, sample_position, start_sample, whitted_lens_sample,
+};
 pub(crate) use tiles::for_each_tile;
 
 /// Why a render could not run.

@@ -293,6 +293,19 @@ pub fn for_each_sample(s: &RenderSettings, x: u32, y: u32, mut f: impl FnMut(f32
     }
 }
 
+/// The film position of Whitted's sample `k` of pixel `(x, y)` (the `k`-th of
+/// [`for_each_sample`]); `None` past the last.
+pub fn sample_position(s: &RenderSettings, x: u32, y: u32, k: u32) -> Option<(f32, f32)> {
+    let (mut at, mut i) = (None, 0);
+    for_each_sample(s, x, y, |px, py, _| {
+        if i == k {
+            at = Some((px, py));
+        }
+        i += 1;
+    });
+    at
+}
+
 /// The point of the lens (in the unit square) Whitted's sample `i` of pixel `(x, y)` passes
 /// through, for a camera with a lens: from a generator of its own, so that a pinhole's
 /// samples are the same with or without this.

@@ -61,17 +61,8 @@ pub(crate) fn explain(args: ExplainArgs) -> ExitCode {
                 Some(&help),
             );
         }
-        Some(k) => {
-            let mut at = (0.0, 0.0);
-            let mut i = 0;
-            snell::render::for_each_sample(s, x, y, |px, py, _| {
-                if i == k {
-                    at = (px, py);
-                }
-                i += 1;
-            });
-            at
-        }
+        // Checked above to be a sample of the pixel.
+        Some(k) => snell::render::sample_position(s, x, y, k).unwrap_or_default(),
     };
     if s.integrator.kind == snell::scene::IntegratorKind::Bdpt {
         return explain_bdpt(&args, &scene, args.sample.unwrap_or(0));

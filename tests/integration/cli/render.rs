@@ -594,17 +594,24 @@ fn light_tracing_renders_and_refuses_what_it_cannot_do() {
         "{}",
         stdout(&o)
     );
-    let pixel = ["--pixel", "8,8", "--width", "16", "--height", "16"];
-    let o = expect(
-        &[
-            &["explain", scene, "--integrator", "light", "--json"][..],
-            &pixel,
-        ]
-        .concat(),
-        &dir,
-        0,
-    );
-    let doc: serde_json::Value = serde_json::from_str(&stdout(&o)).unwrap();
+    // `explain --json` of pixel (8, 8) under an integrator.
+    let json = |integrator: &str| -> serde_json::Value {
+        let args = [
+            "explain",
+            scene,
+            "--integrator",
+            integrator,
+            "--json",
+            "--pixel",
+            "8,8",
+            "--width",
+            "16",
+            "--height",
+            "16",
+        ];
+        serde_json::from_str(&stdout(&expect(&args, &dir, 0))).unwrap()
+    };
+    let doc = json("light");
     assert_eq!(doc["integrator"], "path");
     assert!(
         doc["note"]
@@ -616,7 +623,18 @@ fn light_tracing_renders_and_refuses_what_it_cannot_do() {
     // Under bdpt: the sample's two subpaths, vertex by vertex, from the eye and from the
     // light, in words and in the JSON.
     let o = expect(
-        &[&["explain", scene, "--integrator", "bdpt"][..], &pixel].concat(),
+        &[
+            "explain",
+            scene,
+            "--integrator",
+            "bdpt",
+            "--pixel",
+            "8,8",
+            "--width",
+            "16",
+            "--height",
+            "16",
+        ],
         &dir,
         0,
     );
@@ -626,16 +644,7 @@ fn light_tracing_renders_and_refuses_what_it_cannot_do() {
         text.contains("  the light's: area light on `light`"),
         "{text}"
     );
-    let o = expect(
-        &[
-            &["explain", scene, "--integrator", "bdpt", "--json"][..],
-            &pixel,
-        ]
-        .concat(),
-        &dir,
-        0,
-    );
-    let doc: serde_json::Value = serde_json::from_str(&stdout(&o)).unwrap();
+    let doc = json("bdpt");
     let (eye, light) = (
         doc["camera_path"].as_array().unwrap(),
         doc["light_path"].as_array().unwrap(),

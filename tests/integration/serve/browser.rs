@@ -10,7 +10,7 @@
 //! as it ends (the README's picture: `SNELL_SCREENSHOT=docs/images/serve.png cargo test
 //! browser -- --include-ignored`).
 
-use super::{seed_copy, start, wait_for};
+use super::{scene_copy, seed_copy, start, wait_for};
 use serde_json::{Value, json};
 use std::io::{Read, Write};
 use std::net::TcpStream;
@@ -430,13 +430,7 @@ fn browser_shows_follows_and_explains() {
 #[ignore = "needs Chromium and ChromeDriver (apt-get install chromium chromium-driver): cargo test -- --include-ignored"]
 fn browser_explains_a_bidirectional_sample() {
     let driver = browser("bdpt");
-    let dir = super::super::scratch("browser-bdpt");
-    std::fs::create_dir_all(dir.join("scenes")).unwrap();
-    std::fs::copy(
-        super::super::repo("scenes/caustics.toml"),
-        dir.join("scenes/caustics.toml"),
-    )
-    .unwrap();
+    let dir = scene_copy("browser-bdpt", "caustics.toml");
     let s = start(
         &dir,
         "scenes/caustics.toml",

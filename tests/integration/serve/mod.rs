@@ -46,6 +46,16 @@ pub fn seed_copy(name: &str) -> PathBuf {
     dir
 }
 
+/// A scratch directory `name` holding the repository's `scenes/SCENE` (one that needs no
+/// assets), for `start(&dir, "scenes/SCENE", ...)`.
+pub fn scene_copy(name: &str, scene: &str) -> PathBuf {
+    let dir = super::scratch(name);
+    std::fs::create_dir_all(dir.join("scenes")).unwrap();
+    let rel = format!("scenes/{scene}");
+    std::fs::copy(super::repo(&rel), dir.join(&rel)).unwrap();
+    dir
+}
+
 /// Starts `snell serve SCENE --port 0` (plus `args`) in `dir`, and waits for its address.
 pub fn start(dir: &Path, scene: &str, args: &[&str]) -> Server {
     let mut child = Command::new(env!("CARGO_BIN_EXE_snell"))

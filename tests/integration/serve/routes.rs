@@ -1,6 +1,6 @@
 //! Every route of `snell serve`, and the requests it must refuse.
 
-use super::{current_frame, get, post, raw, seed_copy, start, status, wait_for};
+use super::{current_frame, get, post, raw, scene_copy, seed_copy, start, status, wait_for};
 
 /// The page and its files, the status, the frame (tone mapped on request), every debug
 /// view, the explain data and the pick, the event stream, the camera.
@@ -558,13 +558,7 @@ fn the_lab_answers_and_refuses_bad_queries() {
 /// render's picture at the same samples (within JPEG's error), caustics and all.
 #[test]
 fn a_bdpt_scene_is_previewed_bidirectionally() {
-    let dir = super::super::scratch("serve-bdpt");
-    std::fs::create_dir_all(dir.join("scenes")).unwrap();
-    std::fs::copy(
-        super::super::repo("scenes/caustics.toml"),
-        dir.join("scenes/caustics.toml"),
-    )
-    .unwrap();
+    let dir = scene_copy("serve-bdpt", "caustics.toml");
     let s = start(
         &dir,
         "scenes/caustics.toml",
@@ -627,13 +621,7 @@ fn a_bdpt_scene_is_previewed_bidirectionally() {
 /// samples (the light's pixels at 16, the dark corners at the cap) and `variance` the noise.
 #[test]
 fn an_adaptive_preview_maps_its_samples() {
-    let dir = super::super::scratch("serve-adaptive");
-    std::fs::create_dir_all(dir.join("scenes")).unwrap();
-    std::fs::copy(
-        super::super::repo("scenes/cornell.toml"),
-        dir.join("scenes/cornell.toml"),
-    )
-    .unwrap();
+    let dir = scene_copy("serve-adaptive", "cornell.toml");
     let s = start(
         &dir,
         "scenes/cornell.toml",
@@ -661,13 +649,7 @@ fn an_adaptive_preview_maps_its_samples() {
 #[cfg(feature = "denoise")]
 #[test]
 fn the_preview_shows_the_picture_denoised() {
-    let dir = super::super::scratch("serve-denoised");
-    std::fs::create_dir_all(dir.join("scenes")).unwrap();
-    std::fs::copy(
-        super::super::repo("scenes/cornell.toml"),
-        dir.join("scenes/cornell.toml"),
-    )
-    .unwrap();
+    let dir = scene_copy("serve-denoised", "cornell.toml");
     let s = start(&dir, "scenes/cornell.toml", &["--size", "48", "--spp", "8"]);
     wait_for(s.port, 60, "a finished picture", |s| {
         current_frame(s) && s["frame"]["done"] == true
