@@ -1,6 +1,6 @@
 //! Saving a render's progress to resume it later: the tiles finished so far (a render of
-//! all samples at once, tile by tile) or the film's sums (a progressive render, pass after
-//! pass), with what is needed to check that the resumed render is the same render (the scene file's bytes and
+//! all samples at once, tile by tile), the film's sums (a progressive render, pass after
+//! pass) or the splats and film of light tracing's and bdpt's passes, with what is needed to check that the resumed render is the same render (the scene file's bytes and
 //! the settings) and to continue it without repeating the command line.
 //!
 //! Tiles are independent and every pixel's samples are seeded from `(seed, x, y)` (and a
@@ -13,7 +13,9 @@
 //! u32 0, the tile count (u32), then per tile its index and pixel count (u32 each) and its
 //! pixels (three f32 each); or u32 2 and the film, row by row, each pixel its sums (three
 //! f32), weight (f32), unsigned sums (three f32), sample count (u32) and sum of squared
-//! luminances (f32). Films saved without the squares (u32 1) are still read, their pixels'
+//! luminances (f32); or, for light tracing and bdpt, u32 3, the samples a pixel of the
+//! passes done (u32), u32 1 and the camera's film as above (bdpt) or u32 0 (light tracing),
+//! then the splats' fixed-point sums, row by row, three i64 a pixel. Films saved without the squares (u32 1) are still read, their pixels'
 //! spread taken as none (so the error estimate of a render resumed from one counts only
 //! the samples after it as noisy). It is written to a
 //! temporary file and renamed into place, so a checkpoint is never half written. Version 3
@@ -56,6 +58,22 @@ pub struct Checkpoint {
     pub tiles: BTreeMap<u32, Vec<Color>>,
     /// The film's sums (a progressive render): every pixel with the samples it has.
     pub film: Option<Film>,
+    /// A light-traced or bidirectional render's passes (whose light lands anywhere on the
+    /// film).
+    pub splatted: Option<Splatted>,
+}
+
+/// What the passes of a render whose light lands anywhere (light tracing, bdpt) have done:
+/// the samples a pixel, the camera's film of sums (bdpt's; light tracing has none), and
+/// the splats' fixed-point sums, pixel by pixel.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Splatted {
+    /// Samples (light tracing: paths) a pixel in every pass done.
+    pub spp: u32,
+    /// The film of the camera's strategies (bdpt).
+    pub film: Option<Film>,
+    /// [`crate::film::SplatFilm::snapshot`]: per pixel, three fixed-point sums.
+    pub splats: Vec<[i64; 3]>,
 }
 
 /// The integrator settings a checkpoint keeps, so that `--resume` needs no flags again.
@@ -153,17 +171,30 @@ impl Checkpoint {
             u32s(&mut out, &[s.len() as u32]);
             out.extend_from_slice(s.as_bytes());
         }
-        if let Some(film) = &self.film {
-            u32s(&mut out, &[2]);
+        let film_sums = |out: &mut Vec<u8>, film: &Film| {
             for y in 0..film.height() {
                 for x in 0..film.width() {
                     let p = film.get(x, y);
-                    u32s(&mut out, &p.sum.map(f32::to_bits));
-                    u32s(&mut out, &[p.weight.to_bits()]);
-                    u32s(&mut out, &p.unsigned.map(f32::to_bits));
-                    u32s(&mut out, &[p.samples, p.sum_sq.to_bits()]);
+                    u32s(out, &p.sum.map(f32::to_bits));
+                    u32s(out, &[p.weight.to_bits()]);
+                    u32s(out, &p.unsigned.map(f32::to_bits));
+                    u32s(out, &[p.samples, p.sum_sq.to_bits()]);
                 }
             }
+        };
+        if let Some(sp) = &self.splatted {
+            u32s(&mut out, &[3, sp.spp, sp.film.is_some() as u32]);
+            if let Some(film) = &sp.film {
+                film_sums(&mut out, film);
+            }
+            for p in &sp.splats {
+                for v in p {
+                    out.extend_from_slice(&v.to_le_bytes());
+                }
+            }
+        } else if let Some(film) = &self.film {
+            u32s(&mut out, &[2]);
+            film_sums(&mut out, film);
         } else {
             u32s(&mut out, &[0, self.tiles.len() as u32]);
             for (&i, pixels) in &self.tiles {
@@ -238,7 +269,7 @@ impl Checkpoint {
         } else {
             0
         };
-        let mut tiles = BTreeMap::new();
+        let (mut tiles, mut splatted) = (BTreeMap::new(), None);
         let film = match kind {
             0 => {
                 let count = r.u32().ok_or_else(truncated)?;
@@ -258,39 +289,26 @@ impl Checkpoint {
                 }
                 None
             }
-            1 | 2 => {
-                // The header's size, checked against the bytes there before allocating.
-                let n = width as u64 * height as u64;
-                let size = if kind == 2 { 36 } else { 32 };
-                if (r.bytes.len() - r.at) as u64 / size < n {
+            1 | 2 => Some(read_film(&mut r, width, height, kind == 2).ok_or_else(truncated)?),
+            3 => {
+                let spp = r.u32().ok_or_else(truncated)?;
+                let film = match r.u32().ok_or_else(truncated)? {
+                    0 => None,
+                    1 => Some(read_film(&mut r, width, height, true).ok_or_else(truncated)?),
+                    _ => return Err(bad("its film is neither there nor missing")),
+                };
+                let n = width as usize * height as usize;
+                // The size the header gives, checked against the bytes there first.
+                if (r.bytes.len() - r.at) / 24 < n {
                     return Err(truncated());
                 }
-                let mut film = Film::new(width, height);
-                for y in 0..height {
-                    for x in 0..width {
-                        let mut f = || r.f32().ok_or_else(truncated);
-                        let (sum, weight) = ([f()?, f()?, f()?], f()?);
-                        let unsigned = [f()?, f()?, f()?];
-                        let samples = r.u32().ok_or_else(truncated)?;
-                        let sum_sq = if kind == 2 {
-                            r.f32().ok_or_else(truncated)?
-                        } else if samples > 0 {
-                            // No spread known: every sample taken to be the mean.
-                            let l = crate::math::luminance(Color::from(unsigned));
-                            l * l / samples as f32
-                        } else {
-                            0.0
-                        };
-                        *film.get_mut(x, y) = FilmPixel {
-                            sum,
-                            weight,
-                            unsigned,
-                            samples,
-                            sum_sq,
-                        };
-                    }
+                let mut splats = Vec::with_capacity(n);
+                for _ in 0..n {
+                    let mut v = || r.u64().map(|v| v as i64).ok_or_else(truncated);
+                    splats.push([v()?, v()?, v()?]);
                 }
-                Some(film)
+                splatted = Some(Splatted { spp, film, splats });
+                None
             }
             _ => return Err(bad("it keeps its progress in a way snell does not know")),
         };
@@ -305,8 +323,46 @@ impl Checkpoint {
             output,
             tiles,
             film,
+            splatted,
         })
     }
+}
+
+/// A film of `width` x `height` pixels' sums, as [`Checkpoint::save`] writes them (with
+/// the squared luminances, or without: `squares` false, a version 3 film); `None` where
+/// the bytes end first.
+fn read_film(r: &mut Reader, width: u32, height: u32, squares: bool) -> Option<Film> {
+    // The header's size, checked against the bytes there before allocating.
+    let n = width as u64 * height as u64;
+    let size = if squares { 36 } else { 32 };
+    if (r.bytes.len() - r.at) as u64 / size < n {
+        return None;
+    }
+    let mut film = Film::new(width, height);
+    for y in 0..height {
+        for x in 0..width {
+            let (sum, weight) = ([r.f32()?, r.f32()?, r.f32()?], r.f32()?);
+            let unsigned = [r.f32()?, r.f32()?, r.f32()?];
+            let samples = r.u32()?;
+            let sum_sq = if squares {
+                r.f32()?
+            } else if samples > 0 {
+                // No spread known: every sample taken to be the mean.
+                let l = crate::math::luminance(Color::from(unsigned));
+                l * l / samples as f32
+            } else {
+                0.0
+            };
+            *film.get_mut(x, y) = FilmPixel {
+                sum,
+                weight,
+                unsigned,
+                samples,
+                sum_sq,
+            };
+        }
+    }
+    Some(film)
 }
 
 struct Reader<'a> {
@@ -364,6 +420,7 @@ mod tests {
             output: PathBuf::from("out.png"),
             tiles,
             film: None,
+            splatted: None,
         }
     }
 
@@ -391,6 +448,37 @@ mod tests {
         let e = Checkpoint::load(&path).unwrap_err();
         assert!(e.contains("cut short"), "{e}");
         std::fs::remove_file(&path).unwrap();
+    }
+
+    /// A light-traced or bidirectional render's passes: the samples a pixel, bdpt's camera
+    /// film (or none), and the splats' sums, to the bit, negative and huge ones too.
+    #[test]
+    fn splatted_passes_round_trip_exactly() {
+        let mut checked = 0;
+        for with_film in [true, false] {
+            let mut c = sample();
+            (c.width, c.height, c.tiles) = (5, 3, BTreeMap::new());
+            let mut film: Film = Film::new(5, 3);
+            film.get_mut(2, 1).add(Color::new(0.5, 1.5, 2.5), 1.0);
+            c.splatted = Some(Splatted {
+                spp: 12,
+                film: with_film.then_some(film),
+                splats: (0..15)
+                    .map(|i| [i, -i * 1_000_000_007, i64::MAX - i])
+                    .collect(),
+            });
+            let path = std::env::temp_dir()
+                .join(format!("snell-ckpt-sp-{}-{with_film}", std::process::id()));
+            c.save(&path).unwrap();
+            assert_eq!(Checkpoint::load(&path).unwrap(), c);
+            let bytes = std::fs::read(&path).unwrap();
+            std::fs::write(&path, &bytes[..bytes.len() - 8]).unwrap();
+            let e = Checkpoint::load(&path).unwrap_err();
+            assert!(e.contains("cut short"), "{e}");
+            std::fs::remove_file(&path).unwrap();
+            checked += 1;
+        }
+        assert_eq!(checked, 2);
     }
 
     /// Version 3 files (no noise threshold) and version 2 files (tiles only, no progress

@@ -356,6 +356,7 @@ mod tests {
             output: "s.png".into(),
             tiles: Default::default(),
             film: None,
+            splatted: None,
         };
         assert!(RenderJob::prepare(&path, &Overrides::default(), &limits, Some(&c)).is_ok());
         c.fingerprint ^= 1;

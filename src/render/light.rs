@@ -6,6 +6,7 @@
 
 use super::passes::{PassDone, in_passes};
 use super::{BadSamples, RenderError, RenderOptions, Rendered, TilesDone, for_each_tile};
+use crate::checkpoint::Splatted;
 use crate::film::{Film, SplatFilm};
 use crate::integrator::{LightTracer, LightView, RayStats};
 use crate::scene::Scene;
@@ -20,6 +21,9 @@ pub enum LightTraceError {
     /// A camera light paths cannot reach.
     #[error("light tracing needs a perspective camera (not an orthographic one)")]
     Camera,
+    /// Passes to resume that are not this render's.
+    #[error("the checkpoint's passes do not fit this render: {0}")]
+    Resume(&'static str),
 }
 
 /// Renders `scene` by light tracing, `scene.settings.spp` paths a pixel.
@@ -34,6 +38,8 @@ pub struct LightRendered {
     pub rendered: Rendered,
     /// Paths a pixel in the picture.
     pub spp: u32,
+    /// The passes' state, to resume from ([`render_light_from`]).
+    pub state: Splatted,
 }
 
 /// Renders `scene` by light tracing in passes of 1, 2, 4 ... paths a pixel, until its
@@ -47,6 +53,20 @@ pub fn render_light_for(
     options: &RenderOptions,
     time: Option<Duration>,
 ) -> Result<LightRendered, LightTraceError> {
+    render_light_from(scene, options, time, None, &mut |_| {})
+}
+
+/// [`render_light_for`], its passes going on from `earlier` (a render's
+/// [`LightRendered::state`], or a checkpoint's) if given, and `on_pass` told after each
+/// whole pass, with a way to take the state then (to save it). The passes give the bytes
+/// of a render never stopped: the splats are integers.
+pub fn render_light_from(
+    scene: &Scene,
+    options: &RenderOptions,
+    time: Option<Duration>,
+    earlier: Option<Splatted>,
+    on_pass: &mut dyn FnMut(&dyn Fn() -> Splatted),
+) -> Result<LightRendered, LightTraceError> {
     let start = Instant::now();
     let s = &scene.settings;
     if scene.camera.view().projection != crate::camera::Projection::Perspective {
@@ -54,39 +74,69 @@ pub fn render_light_for(
     }
     let view = LightView::of(scene);
     let splats = SplatFilm::new(s.width, s.height, &s.filter);
+    let first = match earlier {
+        None => 0,
+        Some(e) if e.film.is_some() => return Err(LightTraceError::Resume("they are bdpt's")),
+        Some(e) if e.splats.len() != s.width as usize * s.height as usize => {
+            return Err(LightTraceError::Resume("their film is of another size"));
+        }
+        Some(e) if e.spp > s.spp => {
+            return Err(LightTraceError::Resume(
+                "they hold more paths than the render takes",
+            ));
+        }
+        Some(e) => {
+            splats.restore(&e.splats);
+            e.spp
+        }
+    };
     // A film of nothing: the loop's tiles are the units of work and of progress.
     let mut film: Film<()> = Film::new(s.width, s.height);
     let grid = film.grid();
     let pixels = grid.pixels_in(None);
-    let done = in_passes(s.spp, time, start, pixels, options, |samples, pass| {
-        let before = splats.snapshot();
-        let tiles = for_each_tile(
-            &mut film,
-            pass,
-            |_| false,
-            |x, y, _, (rays, _): &mut (RayStats, BadSamples)| {
-                let mut sampler = crate::sampler::Sampler::new(s.integrator.sampler, s.seed);
-                for k in samples.clone() {
-                    sampler.start(x, y, k);
-                    LightTracer.trace(scene, &view, &mut sampler, rays, &mut |px, py, c| {
-                        splats.add(px, py, c)
-                    });
-                }
-            },
-            |_, _| {},
-        )?;
-        let pass_done = TilesDone::gather(tiles, grid);
-        let whole = pass_done.tiles == grid.count() as usize;
-        if !whole {
-            // Cancelled: the pass's splats are taken back.
-            splats.restore(&before);
-        }
-        Ok(PassDone {
-            rays: pass_done.rays,
-            bad: pass_done.bad_samples,
-            whole,
-        })
-    })?;
+    let done = in_passes(
+        first,
+        s.spp,
+        time,
+        start,
+        pixels,
+        options,
+        |samples, pass| {
+            let before = splats.snapshot();
+            let tiles = for_each_tile(
+                &mut film,
+                pass,
+                |_| false,
+                |x, y, _, (rays, _): &mut (RayStats, BadSamples)| {
+                    let mut sampler = crate::sampler::Sampler::new(s.integrator.sampler, s.seed);
+                    for k in samples.clone() {
+                        sampler.start(x, y, k);
+                        LightTracer.trace(scene, &view, &mut sampler, rays, &mut |px, py, c| {
+                            splats.add(px, py, c)
+                        });
+                    }
+                },
+                |_, _| {},
+            )?;
+            let pass_done = TilesDone::gather(tiles, grid);
+            let whole = pass_done.tiles == grid.count() as usize;
+            if whole {
+                on_pass(&|| Splatted {
+                    spp: samples.end,
+                    film: None,
+                    splats: splats.snapshot(),
+                });
+            } else {
+                // Cancelled: the pass's splats are taken back.
+                splats.restore(&before);
+            }
+            Ok(PassDone {
+                rays: pass_done.rays,
+                bad: pass_done.bad_samples,
+                whole,
+            })
+        },
+    )?;
     let mut image = splats.image(1.0 / done.spp.max(1) as f32);
     for p in &mut image.pixels {
         // A filter's negative lobes may take a pixel below 0: cut there, as the camera's are.
@@ -102,6 +152,11 @@ pub fn render_light_for(
             pixels_rendered: pixels * done.spp as u64 / s.spp.max(1) as u64,
         },
         spp: done.spp,
+        state: Splatted {
+            spp: done.spp,
+            film: None,
+            splats: splats.snapshot(),
+        },
     })
 }
 

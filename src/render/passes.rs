@@ -32,8 +32,11 @@ pub(crate) struct PassesDone {
 }
 
 /// Runs `pass(samples, options)` for each pass, from the render's `start`, over an image
-/// of `pixels` pixels; each pass's options report progress in pixels of the whole render.
+/// of `pixels` pixels, the first pass starting at sample `first` (0, or where a resumed
+/// render's passes ended); each pass's options report progress in pixels of the whole
+/// render.
 pub(crate) fn in_passes(
+    first: u32,
     spp: u32,
     time: Option<Duration>,
     start: Instant,
@@ -42,7 +45,7 @@ pub(crate) fn in_passes(
     mut pass: impl FnMut(Range<u32>, &RenderOptions) -> Result<PassDone, RenderError>,
 ) -> Result<PassesDone, RenderError> {
     let mut done = PassesDone {
-        spp: 0,
+        spp: first,
         rays: RayStats::default(),
         bad: BadSamples::default(),
         complete: true,
@@ -50,7 +53,7 @@ pub(crate) fn in_passes(
     let mut per_sample = None;
     while done.spp < spp {
         let elapsed = start.elapsed();
-        if done.spp > 0 && time.is_some_and(|t| elapsed >= t) {
+        if done.spp > first && time.is_some_and(|t| elapsed >= t) {
             break;
         }
         let left = time.map(|t| t.saturating_sub(elapsed));

@@ -123,6 +123,22 @@ fn an_interrupted_path_traced_render_resumes_without_its_flags() {
     interrupted_render_resumes("interrupt-path", &["--integrator", "path"]);
 }
 
+/// Light tracing and bdpt save their passes (the splats, and bdpt's camera film): an
+/// interrupted render resumed gives the bytes of one never stopped.
+#[cfg(unix)]
+#[test]
+fn an_interrupted_light_traced_or_bidirectional_render_resumes() {
+    let mut checked = 0;
+    for integrator in ["light", "bdpt"] {
+        interrupted_render_resumes(
+            &format!("interrupt-{integrator}"),
+            &["--integrator", integrator],
+        );
+        checked += 1;
+    }
+    assert_eq!(checked, 2);
+}
+
 #[cfg(unix)]
 fn interrupted_render_resumes(name: &str, flags: &[&str]) {
     let dir = scratch(name);
@@ -314,6 +330,7 @@ fn a_checkpoint_of_another_scene_or_size_is_refused() {
         output: dir.join("o.png"),
         tiles: Default::default(),
         film: None,
+        splatted: None,
     };
     c.save(&dir.join("c.ckpt")).unwrap();
     let o = snell()

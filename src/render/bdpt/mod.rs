@@ -11,6 +11,7 @@ pub use strategies::{STRATEGY_DEPTH, strategy_list, strategy_names};
 
 use super::passes::{PassDone, in_passes};
 use super::{PixelJob, RenderError, RenderOptions, Rendered, TilesDone, for_each_tile};
+use crate::checkpoint::Splatted;
 use crate::film::{Film, Image, SplatFilm};
 use crate::integrator::{Bdpt, LightView, Path, Paths, RayStats};
 use crate::math::Color;
@@ -29,6 +30,9 @@ pub enum BdptError {
         "bdpt needs a perspective camera (not an orthographic one): its light paths end at the eye"
     )]
     Camera,
+    /// Passes to resume that are not this render's.
+    #[error("the checkpoint's passes do not fit this render: {0}")]
+    Resume(&'static str),
 }
 
 /// A bidirectional render and how many samples a pixel it holds.
@@ -40,6 +44,8 @@ pub struct BdptRendered {
     pub spp: u32,
     /// The strategy images, if asked for, in [`strategy_names`]' order.
     pub strategies: Vec<Image>,
+    /// The passes' state, to resume from ([`render_bdpt_from`]).
+    pub state: Splatted,
 }
 
 /// What a tile gathers: ray counts, bad samples, and the subpaths' memory its pixels reuse.
@@ -67,14 +73,45 @@ pub fn render_bdpt_for(
     time: Option<Duration>,
     strategies: bool,
 ) -> Result<BdptRendered, BdptError> {
+    render_bdpt_from(scene, options, time, strategies, None, &mut |_| {})
+}
+
+/// [`render_bdpt_for`], its passes going on from `earlier` (a render's
+/// [`BdptRendered::state`], or a checkpoint's) if given, and `on_pass` told after each
+/// whole pass, with a way to take the state then (to save it). The passes give the bytes
+/// of a render never stopped. The strategy images are not kept in the state: they cannot
+/// be asked for with `earlier`.
+pub fn render_bdpt_from(
+    scene: &Scene,
+    options: &RenderOptions,
+    time: Option<Duration>,
+    strategies: bool,
+    earlier: Option<Splatted>,
+    on_pass: &mut dyn FnMut(&dyn Fn() -> Splatted),
+) -> Result<BdptRendered, BdptError> {
     let start = Instant::now();
     let s = &scene.settings;
     let mut film = BdptFilm::new(scene, strategies)?;
+    if let Some(e) = earlier {
+        film.resume(scene, e)?;
+    }
     let grid = film.film.grid();
     let pixels = grid.pixels_in(None);
-    let done = in_passes(s.spp, time, start, pixels, options, |samples, pass| {
-        film.pass(scene, samples, pass)
-    })?;
+    let done = in_passes(
+        film.spp,
+        s.spp,
+        time,
+        start,
+        pixels,
+        options,
+        |samples, pass| {
+            let done = film.pass(scene, samples, pass)?;
+            if done.whole {
+                on_pass(&|| film.state());
+            }
+            Ok(done)
+        },
+    )?;
     Ok(BdptRendered {
         rendered: Rendered {
             image: film.image(),
@@ -86,6 +123,7 @@ pub fn render_bdpt_for(
         },
         spp: done.spp,
         strategies: film.strategy_images(),
+        state: film.state(),
     })
 }
 
@@ -118,6 +156,41 @@ impl BdptFilm {
     /// Samples a pixel it holds.
     pub fn spp(&self) -> u32 {
         self.spp
+    }
+
+    /// What its passes have done, to resume from.
+    pub fn state(&self) -> Splatted {
+        Splatted {
+            spp: self.spp,
+            film: Some(self.film.clone()),
+            splats: self.splats.snapshot(),
+        }
+    }
+
+    /// Takes up `earlier`'s passes (a film of `scene` without strategy images).
+    fn resume(&mut self, scene: &Scene, earlier: Splatted) -> Result<(), BdptError> {
+        let s = &scene.settings;
+        let Some(film) = earlier.film else {
+            return Err(BdptError::Resume("they are light tracing's"));
+        };
+        if (film.width(), film.height()) != (s.width, s.height)
+            || earlier.splats.len() != s.width as usize * s.height as usize
+        {
+            return Err(BdptError::Resume("their film is of another size"));
+        }
+        if earlier.spp > s.spp {
+            return Err(BdptError::Resume(
+                "they hold more samples than the render takes",
+            ));
+        }
+        if self.strategies.is_some() {
+            return Err(BdptError::Resume(
+                "the strategy images are not kept in them",
+            ));
+        }
+        self.splats.restore(&earlier.splats);
+        (self.film, self.spp) = (film, earlier.spp);
+        Ok(())
     }
 
     /// The picture: the camera's strategies and the splats over the samples taken.

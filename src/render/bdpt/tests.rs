@@ -252,6 +252,56 @@ fn a_render_stopped_by_time_is_the_render_of_its_samples() {
     }
 }
 
+/// Passes resumed from a render stopped after its first passes give the bytes of the render
+/// never stopped (the camera's film and the splats both carried over); a light-traced
+/// state is refused, and so are strategy images, which the state does not keep.
+#[test]
+fn passes_resumed_are_the_render_never_stopped() {
+    let make = |spp| sized(cornell(), 16, spp, 1);
+    let stopped = render_bdpt_for(&make(2), &options(2), None, false).unwrap();
+    assert_eq!(stopped.state.spp, 2);
+    let mut told = vec![];
+    let resumed = render_bdpt_from(
+        &make(8),
+        &options(1),
+        None,
+        false,
+        Some(stopped.state.clone()),
+        &mut |state| told.push(state().spp),
+    )
+    .unwrap();
+    assert_eq!(told, [4, 8]);
+    assert_eq!(resumed.spp, 8);
+    let whole = render_bdpt(&make(8), &options(2)).unwrap();
+    assert_eq!(
+        bits(&resumed.rendered.image.pixels),
+        bits(&whole.image.pixels)
+    );
+    let light = crate::checkpoint::Splatted {
+        film: None,
+        ..stopped.state.clone()
+    };
+    let mut refused = 0;
+    for (state, strategies, says) in [
+        (light, false, "light tracing's"),
+        (stopped.state, true, "strategy images"),
+    ] {
+        let e = render_bdpt_from(
+            &make(8),
+            &options(1),
+            None,
+            strategies,
+            Some(state),
+            &mut |_| {},
+        )
+        .unwrap_err()
+        .to_string();
+        assert!(e.contains(says), "{e}");
+        refused += 1;
+    }
+    assert_eq!(refused, 2);
+}
+
 /// Every BSDF, the deltas too, under area lights (scenes/materials.toml: smooth and rough
 /// metals, clear and rough glass, plastics, a thin pane; and a Phong ball that mirrors part
 /// of its light and a Phong glass one): bidirectional and path-traced pictures agree block

@@ -157,3 +157,61 @@ fn a_render_stopped_by_time_is_the_render_of_its_paths() {
         );
     }
 }
+
+/// Passes resumed from a render stopped after its first passes give the bytes of the render
+/// never stopped (at 2 threads, resumed at 1: the splats are integers); bdpt's state is
+/// refused, and so is one of more paths than the render takes.
+#[test]
+fn passes_resumed_are_the_render_never_stopped() {
+    let stopped = render_light_for(&cornell(16, 4), &options(2), None).unwrap();
+    assert_eq!(stopped.state.spp, 4);
+    let mut told = vec![];
+    let resumed = render_light_from(
+        &cornell(16, 16),
+        &options(1),
+        None,
+        Some(stopped.state.clone()),
+        &mut |state| told.push(state().spp),
+    )
+    .unwrap();
+    // Passes 4..8 and 8..16, each told with its state.
+    assert_eq!(told, [8, 16]);
+    let whole = render_light(&cornell(16, 16), &options(2)).unwrap();
+    assert_eq!(
+        bits(&resumed.rendered.image.pixels),
+        bits(&whole.image.pixels)
+    );
+    let mut bdpt = stopped.state.clone();
+    bdpt.film = Some(Film::new(16, 16));
+    let mut refused = 0;
+    for (state, says) in [
+        (bdpt, "bdpt's"),
+        (
+            Splatted {
+                spp: 32,
+                ..stopped.state.clone()
+            },
+            "more paths",
+        ),
+        (
+            Splatted {
+                splats: vec![[0; 3]; 3],
+                ..stopped.state
+            },
+            "another size",
+        ),
+    ] {
+        let e = render_light_from(
+            &cornell(16, 16),
+            &options(1),
+            None,
+            Some(state),
+            &mut |_| {},
+        )
+        .unwrap_err()
+        .to_string();
+        assert!(e.contains(says), "{e}");
+        refused += 1;
+    }
+    assert_eq!(refused, 3);
+}

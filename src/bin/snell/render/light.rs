@@ -1,29 +1,43 @@
 //! A light-traced or bidirectional render from the command line (`--integrator light`,
 //! `--integrator bdpt`), whose light lands anywhere on the film: passes of 1, 2, 4 ...
-//! samples a pixel (`--time` stops after a pass), without the flags that need a film of
-//! sums alone or tiles of finished pixels.
+//! samples a pixel (`--time` stops after a pass), checkpoints between passes, and Ctrl-C
+//! writing the picture of the passes done; not a region (its pixels take light from the
+//! paths of every other pixel).
 
 use super::{Outcome, Run, STOP};
 use crate::args::RenderArgs;
 use crate::usage_error;
+use snell::checkpoint::Splatted;
 use snell::render::RenderOptions;
 use snell::scene::IntegratorKind;
 use std::process::ExitCode;
+use std::time::Instant;
 
 /// The flags light tracing and bdpt do not take yet, refused with exit 2.
-pub(super) fn check(args: &RenderArgs, kind: IntegratorKind) -> Result<(), ExitCode> {
-    let other = [
-        (args.region.is_some(), "--region"),
+pub(super) fn check(
+    args: &RenderArgs,
+    kind: IntegratorKind,
+    strategies: bool,
+) -> Result<(), ExitCode> {
+    if args.region.is_some() {
+        return Err(usage_error(
+            &format!("{} cannot be combined with --region yet", name(kind)),
+            Some("render without it, or with --integrator path"),
+        ));
+    }
+    let saved = [
         (args.checkpoint.is_some(), "--checkpoint"),
         (args.resume.is_some(), "--resume"),
     ];
-    match other.iter().find(|(given, _)| *given) {
-        Some((_, flag)) => Err(usage_error(
-            &format!("{} cannot be combined with {flag} yet", name(kind)),
-            Some("render without it, or with --integrator path"),
-        )),
-        None => Ok(()),
+    if strategies && let Some((_, flag)) = saved.iter().find(|(given, _)| *given) {
+        return Err(usage_error(
+            &format!(
+                "the strategy images cannot be combined with {flag} yet: a checkpoint does not keep them"
+            ),
+            Some("render the strategy images without a checkpoint"),
+        ));
     }
+    Ok(())
 }
 
 /// What the integrator is called in messages.
@@ -42,6 +56,7 @@ pub(super) fn render_splatted(
     strategies: bool,
     run: &Run,
     time: Option<std::time::Duration>,
+    earlier: Option<Splatted>,
 ) -> Result<Outcome, String> {
     let options = RenderOptions {
         threads: run.threads,
@@ -49,27 +64,61 @@ pub(super) fn render_splatted(
         cancel: Some(&STOP),
         region: None,
     };
-    let (spp, r, layers) = if kind == IntegratorKind::Bdpt {
-        let r = snell::render::bdpt::render_bdpt_for(run.scene, &options, time, strategies)
-            .map_err(|e| e.to_string())?;
-        (r.spp, r.rendered, r.strategies)
-    } else {
-        let r = snell::render::light::render_light_for(run.scene, &options, time)
-            .map_err(|e| e.to_string())?;
-        (r.spp, r.rendered, vec![])
+    let first = earlier.as_ref().map_or(0, |e| e.spp);
+    // A checkpoint after a pass, when `--checkpoint-every` has passed since the last.
+    let (mut last_save, mut save_error) = (Instant::now(), None);
+    let mut on_pass = |state: &dyn Fn() -> Splatted| {
+        if let Some(path) = run.checkpoint
+            && last_save.elapsed() >= run.every
+        {
+            if let Err(e) = run.saver.splatted(state()).save(path) {
+                save_error.get_or_insert(e.to_string());
+            }
+            last_save = Instant::now();
+        }
     };
+    let (spp, r, layers, state) = if kind == IntegratorKind::Bdpt {
+        let r = snell::render::bdpt::render_bdpt_from(
+            run.scene,
+            &options,
+            time,
+            strategies,
+            earlier,
+            &mut on_pass,
+        )
+        .map_err(|e| e.to_string())?;
+        (r.spp, r.rendered, r.strategies, r.state)
+    } else {
+        let r = snell::render::light::render_light_from(
+            run.scene,
+            &options,
+            time,
+            earlier,
+            &mut on_pass,
+        )
+        .map_err(|e| e.to_string())?;
+        (r.spp, r.rendered, vec![], r.state)
+    };
+    if let (Some(e), Some(path)) = (save_error, run.checkpoint) {
+        eprintln!(
+            "warning: cannot save the checkpoint {}: {e}",
+            path.display()
+        );
+    }
     let unit = if kind == IntegratorKind::Bdpt {
         "samples"
     } else {
         "paths"
     };
     let pixels = run.scene.settings.width as u64 * run.scene.settings.height as u64;
+    let complete = r.complete();
     Ok(Outcome {
-        complete: r.complete(),
+        complete,
         spp,
-        samples: pixels * spp as u64,
+        samples: pixels * (spp - first) as u64,
         done: format!("{spp} {unit} a pixel (the pass under way left out)"),
-        checkpoint: None,
+        // Where an interrupted render stopped, for `--resume`.
+        checkpoint: (!complete).then(|| run.saver.splatted(state)),
         image: r.image,
         rays: r.rays,
         bad_samples: r.bad_samples,

@@ -185,14 +185,14 @@ fn render_job(
             Some("render with --integrator path (or [integrator] type = \"path\")"),
         );
     }
+    let strategies = args.aov.contains(&crate::args::AovArg::Strategies);
     if matches!(
         kind,
         snell::scene::IntegratorKind::Light | snell::scene::IntegratorKind::Bdpt
-    ) && let Err(code) = light::check(args, kind)
+    ) && let Err(code) = light::check(args, kind, strategies)
     {
         return code;
     }
-    let strategies = args.aov.contains(&crate::args::AovArg::Strategies);
     if strategies && kind != snell::scene::IntegratorKind::Bdpt {
         return usage_error(
             "the strategy images are bidirectional path tracing's",
@@ -287,7 +287,13 @@ fn render_job(
         kind,
         snell::scene::IntegratorKind::Light | snell::scene::IntegratorKind::Bdpt
     ) {
-        light::render_splatted(kind, strategies, &run, args.time)
+        light::render_splatted(
+            kind,
+            strategies,
+            &run,
+            args.time,
+            resumed.and_then(|c| c.splatted),
+        )
     } else if by_passes {
         passes::render_passes(&run, resumed.and_then(|c| c.film), args.time)
     } else {
@@ -511,6 +517,15 @@ impl Saver<'_> {
                 .unwrap_or_else(|_| self.out_path.to_path_buf()),
             tiles,
             film,
+            splatted: None,
+        }
+    }
+
+    /// The checkpoint of a light-traced or bidirectional render's passes.
+    pub(crate) fn splatted(&self, passes: snell::checkpoint::Splatted) -> Checkpoint {
+        Checkpoint {
+            splatted: Some(passes),
+            ..self.checkpoint(Default::default(), None)
         }
     }
 }
