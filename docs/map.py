@@ -22,7 +22,7 @@ def doc(path):
     if path.endswith('.rs'):
         lines=[]
         for l in text.splitlines():
-            if l.startswith('//!') or (not lines and l.startswith('// ') and path.startswith('fuzz/')):
+            if l.startswith('//!') or (path.startswith('fuzz/') and l.startswith('// ') and (not lines or not l.startswith('//!'))):
                 lines.append(l[3:].strip())
             elif lines: break
         para=[]
@@ -33,6 +33,13 @@ def doc(path):
     if path.endswith(('.py','.pyi')):
         m=re.search(r'^(?:#[^\n]*\n)*\s*(?:"""|\'\'\')(.*?)(?:\n\s*\n|"""|\'\'\')', text, re.S)
         return first_sentence(m.group(1)) if m else ''
+    if path.endswith('.js'):
+        para=[]
+        for l in text.splitlines():
+            if l.startswith('// '):
+                para.append(l[3:].strip())
+            else: break
+        return first_sentence(' '.join(para))
     if path.endswith('.sh') or path=='.ci/run':
         para=[]
         for l in text.splitlines()[1:]:
@@ -65,7 +72,7 @@ INTRO = {
  'src/scene/load/': 'From a parsed file to a `Scene`: every value checked where it is written (each problem located, building going on to find the others), names and paths resolved, files read.',
  'src/scene/gltf/': 'A glTF file as a scene places it: its meshes, materials, cameras and lights as snell\'s.',
  'src/scene/detail/': 'Normal and bump maps applied at a hit.',
- 'src/integrator/': 'Ways of turning a camera ray into a colour: Whitted, the path tracer, the debug views, and the recorders behind `snell explain`.',
+ 'src/integrator/': 'Ways of turning a camera ray into a colour, or a light\'s path into splats: Whitted, the path tracer, the light tracer, bidirectional path tracing, the debug views, and the recorders behind `snell explain`.',
  'src/integrator/whitted/': 'Whitted-style ray tracing (the default integrator): the recursion of reflected and refracted rays with Phong direct light, and its shadow rays through transparent objects.',
  'src/integrator/bdpt/': 'Bidirectional path tracing (`[integrator] type = "bdpt"`): the two subpaths, their vertices with the densities both ways, the joins, and the MIS weight of each strategy.',
  'src/render/bdpt/': 'The bidirectionally path-traced render: camera samples to the film and light paths joined to the eye as splats, in passes; its tests against the path tracer and the caustic\'s energy.',
@@ -93,17 +100,12 @@ INTRO = {
  'snell-py/python/snell/': 'The Python package `snell` (`pip install ./snell-py`, built by maturin): the shape a script sees, around `_snell`.',
  'snell-py/tests/': 'The Python module\'s tests (pytest), against the `snell` binary `cargo test` built; run by `.ci/run`.',
 }
+# The page's markup and style, which have no header comment of their own (each script's
+# line is its header's first sentence).
 PAGE = {
  'index.html': 'The page\'s markup: the picture, the controls (exposure, tone curve, integrator), the status line and the explain panel.',
- 'app.js': 'The page\'s script, its entry module: it follows the event stream of the server\'s status and wires the controls to the modules below (ES modules, one per concern, no build step).',
- 'state.js': 'What the page\'s modules share: the elements, the state more than one of them reads or writes (the server\'s latest status, a drag under way) as one object, small formatting helpers.',
- 'picture.js': 'The picture and the status line: the newest frame (or debug view) shown, frames it could not keep up with skipped, the scene\'s exposure and curve followed in the controls, errors over the picture.',
- 'explain.js': 'Pixels explained: the hover that names what is under the pointer, and a click\'s `/explain` answer shown as a tree, its hit points drawn over the picture.',
- 'camera.js': 'Camera moves: a drag orbits, the wheel moves in and out, each sent to `/camera`; a press that does not move is a click to explain; the copy and reset buttons.',
- 'paths.js': 'A clicked pixel\'s light by the kind of path that brought it (`/paths`): a bar of the kinds\' shares, and sampled paths of each kind drawn over views of the scene from above and the side, each vertex\'s numbers on hover.',
  'style.css': 'The page\'s look (and the lab page\'s).',
  'lab.html': 'The sampling lab\'s page (`/lab`, linked from the preview): a material\'s form, the test\'s answer, and three canvases for the histograms.',
- 'lab.js': 'The sampling lab\'s script: sends the form to `/lab/bsdf` and draws the samples\' histogram, the density\'s and their difference; a link with the form\'s values runs it at once.',
 }
 ORDER = ['src/','src/math/','src/sampler/','src/geometry/','src/geometry/mesh/','src/accel/','src/accel/wide/',
  'src/bsdf/','src/material/','src/texture/','src/light/','src/light/sky/','src/mesh_file/','src/mesh_file/obj/','src/mesh_file/ply/','src/mesh_file/gltf/',
@@ -122,7 +124,8 @@ for f in files:
         continue
     b=os.path.basename(f)
     if d=='src/bin/snell/serve/page/':
-        groups[d].append((b,PAGE[b])); continue
+        # A script's own header where it has one; the markup and style from PAGE.
+        groups[d].append((b,doc(f) or PAGE[b])); continue
     if not f.endswith(('.rs','.py','.pyi','.sh')): continue
     groups[d].append((b,doc(f)))
 out=[]
