@@ -147,6 +147,37 @@ pub fn check_settings(s: &RenderSettings, limits: &Limits) -> Result<(), JobErro
     Ok(())
 }
 
+/// The settings of `s` its integrator does not read, from a scene written for another
+/// integrator (`--integrator` chose this one): a warning each. A `--clamp` given for light
+/// tracing or bdpt, which never clamp, is refused.
+fn unread_settings(s: &RenderSettings, overrides: &Overrides) -> Result<Vec<String>, JobError> {
+    use crate::scene::IntegratorKind::*;
+    let i = &s.integrator;
+    let mut warnings = vec![];
+    let name = match i.kind {
+        Light => "light tracing",
+        Bdpt => "bdpt",
+        _ => "",
+    };
+    if !name.is_empty() && i.clamp.is_some() {
+        if overrides.clamp.is_some() {
+            return Err(settings_error(
+                format!(
+                    "--clamp is the path tracer's: {name} does not clamp (its samples add to many pixels)"
+                ),
+                Some("render without --clamp, or with --integrator path".into()),
+            ));
+        }
+        warnings.push(format!(
+            "the scene's `clamp` is the path tracer's: {name} does not clamp, so it is not used"
+        ));
+    }
+    if i.kind != Bdpt && i.mis != crate::scene::MisHeuristic::Power {
+        warnings.push("the scene's `mis` is bdpt's: this integrator does not read it".into());
+    }
+    Ok(warnings)
+}
+
 impl RenderJob {
     /// Loads `scene_path` and applies, in order, a resumed checkpoint's settings and then
     /// `overrides`; refuses settings past `limits`, a render the machine's memory cannot
@@ -203,6 +234,8 @@ impl RenderJob {
         }
         overrides.apply(s);
         check_settings(s, limits)?;
+        let unread = unread_settings(s, overrides)?;
+        scene.warnings.extend(unread);
         scene.recheck_lighting(lighting);
         if let Some(available) = available_memory()
             && let Err(e) = memory_estimate(&scene).check(available)

@@ -91,6 +91,17 @@ def plan(spec: JobSpec, snell_bin: str) -> Tuple[snell.SceneInfo, Dict[int, str]
     if not os.path.isfile(spec.scene):
         raise FarmError(f"{spec.scene}: no such scene file", 2)
     info = snell.check(snell_bin, spec.scene, spec.width, spec.height)
+    # Every task renders a region, which these scenes cannot take yet: refused before any
+    # worker tries (and fails) three times.
+    unsplittable = {
+        "light": "light tracing lands each pixel's light anywhere on the film",
+        "bdpt": "bdpt lands each pixel's light paths anywhere on the film",
+    }.get(info.integrator)
+    if unsplittable is None and info.noise is not None:
+        unsplittable = "adaptive sampling decides a pixel's samples from its neighbours'"
+    if unsplittable is not None:
+        raise FarmError(f"{spec.scene}: snell-farm renders a scene in regions, and {unsplittable}; "
+                        "render it with `snell render` instead", 2)
     frames = spec.frames if spec.frames is not None else range(info.frames)
     if frames[-1] >= info.frames:
         have = "has only frame 0" if info.frames == 1 else f"has frames 0..{info.frames - 1}"

@@ -20,6 +20,10 @@ class SceneInfo:
     fps: float
     files: List[str]
     warnings: List[str]
+    integrator: str = "whitted"
+    """whitted, path, light or bdpt."""
+    noise: Optional[float] = None
+    """Adaptive sampling's threshold, where the scene samples adaptively."""
 
 
 def find_snell(given: Optional[str]) -> str:
@@ -63,6 +67,8 @@ def check(snell: str, scene: str, width: Optional[int] = None, height: Optional[
             fps=float(data.get("fps", 0) or 0),
             files=[str(f) for f in data.get("files", [])],
             warnings=[str(w) for w in data.get("warnings", [])],
+            integrator=str(data.get("integrator", "whitted")),
+            noise=None if data.get("noise") is None else float(data["noise"]),
         )
     except (ValueError, KeyError, TypeError) as err:
         raise FarmError(f"`snell check {scene} --json` did not print the expected JSON ({err}); is {snell} too old?", 2)

@@ -140,6 +140,27 @@ def test_bad_jobs_are_refused(snell_bin, tmp_path, capsys, args, message):
     assert os.listdir(tmp_path) == []
 
 
+@pytest.mark.parametrize("integrator, image, message", [
+    ("light", "", "light tracing lands each pixel's light anywhere"),
+    ("bdpt", "", "bdpt lands each pixel's light paths anywhere"),
+    ("path", "noise = 0.05\n", "adaptive sampling decides a pixel's samples"),
+])
+def test_scenes_that_cannot_be_split_into_regions_are_refused(snell_bin, tmp_path, capsys, integrator, image,
+                                                             message):
+    """Every task renders a region: a scene whose pixels depend on other pixels' samples is
+    refused before any task, with exit status 2, rather than failing on every worker."""
+    scene = tmp_path / "s.toml"
+    scene.write_text(f"[image]\nwidth = 16\nheight = 16\n{image}\n[integrator]\ntype = \"{integrator}\"\n\n"
+                     "[camera]\nposition = [0, 0, 3]\nlook_at = [0, 0, 0]\n\n"
+                     "[[lights]]\ntype = \"point\"\nposition = [0, 2, 2]\nintensity = 10\n\n"
+                     "[materials.m]\ncolor = 0.5\n\n"
+                     "[[objects]]\ntype = \"sphere\"\ncenter = [0, 0, 0]\nradius = 1\nmaterial = \"m\"\n")
+    assert main(["render", str(scene), "-o", str(tmp_path / "x.png"), "--snell", snell_bin]) == 2
+    err = capsys.readouterr().err
+    assert message in err and "render it with `snell render` instead" in err, err
+    assert sorted(os.listdir(tmp_path)) == ["s.toml"]
+
+
 def test_a_missing_scene(snell_bin, tmp_path, capsys):
     assert main(["render", str(DATA / "no-such.toml"), "-o", str(tmp_path / "x.png"), "--snell", snell_bin]) == 2
     assert "no such scene file" in capsys.readouterr().err

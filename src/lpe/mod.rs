@@ -259,7 +259,7 @@ impl std::fmt::Display for RenderLpeError {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
             RenderLpeError::Whitted => f.write_str(
-                "light path expressions follow the path tracer's paths, and this render is not the path tracer's (it is Whitted's or light tracing)",
+                "light path expressions follow the path tracer's paths, and this render is not the path tracer's (it is Whitted's, light tracing's or bdpt's)",
             ),
             RenderLpeError::Duplicate(n) => write!(f, "two light path expressions are named `{n}`"),
             RenderLpeError::Taken(n) => write!(

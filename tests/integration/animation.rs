@@ -369,6 +369,20 @@ fn render_frames_refuses_what_it_cannot_do() {
     let out = snell(&["check", still.to_str().unwrap(), "--json"]);
     let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     assert_eq!(v["frames"], 1);
+    // Its integrator and adaptive sampling's threshold, after the command line's.
+    assert_eq!(
+        (&v["integrator"], &v["noise"]),
+        (&serde_json::json!("whitted"), &serde_json::Value::Null)
+    );
+    let out = snell(&[
+        "check",
+        still.to_str().unwrap(),
+        "--json",
+        "--integrator",
+        "bdpt",
+    ]);
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["integrator"], "bdpt");
     let out = snell(&[
         "render",
         still.to_str().unwrap(),

@@ -193,9 +193,9 @@ pub(crate) struct RenderArgs {
     /// `[image] tonemap`).
     #[arg(long, value_parser = parse_tonemap, value_name = "CURVE")]
     pub(crate) tonemap: Option<snell::output::tone::ToneCurve>,
-    /// The path tracer renders in passes (1, 2, 4 ... samples per pixel); stop after the
-    /// pass that spends this time, or at the scene's samples if sooner: 30s, 2m, 1h, 1.5
-    /// (seconds). With --spp 65536 the time alone decides.
+    /// The path tracer, light tracing and bdpt render in passes (1, 2, 4 ... samples per
+    /// pixel); stop after the pass that spends this time, or at the scene's samples if
+    /// sooner: 30s, 2m, 1h, 1.5 (seconds). With --spp 65536 the time alone decides.
     #[arg(long, allow_hyphen_values = true, value_parser = parse_duration, value_name = "TIME")]
     pub(crate) time: Option<std::time::Duration>,
     /// Adaptive sampling (path tracer): after 16 samples a pixel, a pixel takes more only
@@ -230,7 +230,7 @@ pub(crate) struct RenderArgs {
     #[arg(long)]
     pub(crate) stats: bool,
     /// Debug views to write besides the picture, comma-separated: normal, uv, depth,
-    /// albedo, object, material, bounces, variance (the path tracer's), or all; and
+    /// albedo, object, material, bounces, variance and spp (the path tracer's), or all; and
     /// strategies (bdpt's: each strategy's light, weighted and not, for paths of up to 4
     /// segments). With a .png output each goes to its own file (seed.normal.png,
     /// seed.s1-t2.png ...); with .exr, all go into the one file as layers.

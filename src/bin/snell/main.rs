@@ -228,6 +228,8 @@ fn check_json(path: &Path, limits: &Limits, overrides: &snell::job::Overrides) -
         "width": s.settings.width,
         "height": s.settings.height,
         "spp": s.settings.spp,
+        "integrator": s.settings.integrator.kind,
+        "noise": s.settings.noise,
         "frames": s.animation.map_or(1, |a| a.frames),
         "fps": s.animation.map(|a| a.fps),
         "files": s.files.iter().map(|f| absolute(f)).collect::<Vec<_>>(),

@@ -494,6 +494,66 @@ fn light_tracing_renders_and_refuses_what_it_cannot_do() {
             means[2]
         );
     }
+    // A clamp, the path tracer's: `--clamp` is refused under light tracing and bdpt, which
+    // never clamp; a path-traced scene's own clamp is not used, and a warning says so.
+    let clamped = dir.join("clamped.toml");
+    std::fs::write(
+        &clamped,
+        std::fs::read_to_string(scene)
+            .unwrap()
+            .replace("[integrator]", "[integrator]\nclamp = 4"),
+    )
+    .unwrap();
+    assert!(
+        std::fs::read_to_string(&clamped)
+            .unwrap()
+            .contains("clamp = 4")
+    );
+    let mut clamps = 0;
+    for (integrator, name) in [("light", "light tracing"), ("bdpt", "bdpt")] {
+        let o = expect(
+            &[
+                &["render", scene, "-o", "c.png", "--integrator", integrator][..],
+                &["--clamp", "4"],
+                &small,
+            ]
+            .concat(),
+            &dir,
+            2,
+        );
+        assert!(
+            stderr(&o).contains(&format!(
+                "--clamp is the path tracer's: {name} does not clamp"
+            )),
+            "{}",
+            stderr(&o)
+        );
+        let o = expect(
+            &[
+                "render",
+                clamped.to_str().unwrap(),
+                "-o",
+                "c.png",
+                "--integrator",
+                integrator,
+            ]
+            .iter()
+            .chain(&small[..small.len() - 1])
+            .copied()
+            .collect::<Vec<_>>(),
+            &dir,
+            0,
+        );
+        assert!(
+            stderr(&o).contains(&format!(
+                "warning: the scene's `clamp` is the path tracer's: {name} does not clamp"
+            )),
+            "{}",
+            stderr(&o)
+        );
+        clamps += 1;
+    }
+    assert_eq!(clamps, 2);
     // A region (whose pixels take light from every pixel's paths), and bdpt's strategy
     // images with a checkpoint (which does not keep them), are refused.
     let mut refused = 0;
