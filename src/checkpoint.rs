@@ -1,7 +1,8 @@
 //! Saving a render's progress to resume it later: the tiles finished so far (a render of
 //! all samples at once, tile by tile), the film's sums (a progressive render, pass after
-//! pass) or the splats and film of light tracing's and bdpt's passes, with what is needed to check that the resumed render is the same render (the scene file's bytes and
-//! the settings) and to continue it without repeating the command line.
+//! pass) or the splats and film of light tracing's and bdpt's passes, with what is needed
+//! to check that the resumed render is the same render (the scene file's bytes and the
+//! settings) and to continue it without repeating the command line.
 //!
 //! Tiles are independent and every pixel's samples are seeded from `(seed, x, y)` (and a
 //! sample's index), so a resumed render gives the same bytes as one that was never stopped.
@@ -15,8 +16,8 @@
 //! f32), weight (f32), unsigned sums (three f32), sample count (u32) and sum of squared
 //! luminances (f32); or, for light tracing and bdpt, u32 3, the samples a pixel of the
 //! passes done (u32), u32 1 and the camera's film as above (bdpt) or u32 0 (light tracing),
-//! then the splats' fixed-point sums, row by row, three i64 a pixel. Films saved without the squares (u32 1) are still read, their pixels'
-//! spread taken as none (so the error estimate of a render resumed from one counts only
+//! then the splats' fixed-point sums, row by row, three i64 a pixel. Films saved without
+//! the squares (u32 1) are still read, their pixels' spread taken as none (so the error estimate of a render resumed from one counts only
 //! the samples after it as noisy). It is written to a
 //! temporary file and renamed into place, so a checkpoint is never half written. Version 3
 //! files (without the noise threshold), version 2 files (tiles only, without the u32 0 too)
@@ -74,6 +75,34 @@ pub struct Splatted {
     pub film: Option<Film>,
     /// [`crate::film::SplatFilm::snapshot`]: per pixel, three fixed-point sums.
     pub splats: Vec<[i64; 3]>,
+}
+
+impl Splatted {
+    /// Whether these passes can go on in a render with settings `s` by bdpt (`bdpt`) or by
+    /// light tracing: passes of that integrator (bdpt's have a camera film, light
+    /// tracing's none), of the render's size, holding no more samples than it takes; why
+    /// not, where not.
+    pub fn fits(&self, s: &RenderSettings, bdpt: bool) -> Result<(), &'static str> {
+        match (&self.film, bdpt) {
+            (Some(_), false) => return Err("they are bdpt's"),
+            (None, true) => return Err("they are light tracing's"),
+            _ => {}
+        }
+        let film_size = self.film.as_ref().map(|f| (f.width(), f.height()));
+        if film_size.is_some_and(|size| size != (s.width, s.height))
+            || self.splats.len() != s.width as usize * s.height as usize
+        {
+            return Err("their film is of another size");
+        }
+        if self.spp > s.spp {
+            return Err(if bdpt {
+                "they hold more samples than the render takes"
+            } else {
+                "they hold more paths than the render takes"
+            });
+        }
+        Ok(())
+    }
 }
 
 /// The integrator settings a checkpoint keeps, so that `--resume` needs no flags again.

@@ -76,16 +76,8 @@ pub fn render_light_from(
     let splats = SplatFilm::new(s.width, s.height, &s.filter);
     let first = match earlier {
         None => 0,
-        Some(e) if e.film.is_some() => return Err(LightTraceError::Resume("they are bdpt's")),
-        Some(e) if e.splats.len() != s.width as usize * s.height as usize => {
-            return Err(LightTraceError::Resume("their film is of another size"));
-        }
-        Some(e) if e.spp > s.spp => {
-            return Err(LightTraceError::Resume(
-                "they hold more paths than the render takes",
-            ));
-        }
         Some(e) => {
+            e.fits(s, false).map_err(LightTraceError::Resume)?;
             splats.restore(&e.splats);
             e.spp
         }

@@ -169,20 +169,13 @@ impl BdptFilm {
 
     /// Takes up `earlier`'s passes (a film of `scene` without strategy images).
     fn resume(&mut self, scene: &Scene, earlier: Splatted) -> Result<(), BdptError> {
-        let s = &scene.settings;
-        let Some(film) = earlier.film else {
-            return Err(BdptError::Resume("they are light tracing's"));
-        };
-        if (film.width(), film.height()) != (s.width, s.height)
-            || earlier.splats.len() != s.width as usize * s.height as usize
-        {
-            return Err(BdptError::Resume("their film is of another size"));
-        }
-        if earlier.spp > s.spp {
-            return Err(BdptError::Resume(
-                "they hold more samples than the render takes",
-            ));
-        }
+        earlier
+            .fits(&scene.settings, true)
+            .map_err(BdptError::Resume)?;
+        // (`fits` has checked that there is one, of the render's size.)
+        let film = earlier
+            .film
+            .ok_or(BdptError::Resume("they are light tracing's"))?;
         if self.strategies.is_some() {
             return Err(BdptError::Resume(
                 "the strategy images are not kept in them",

@@ -4,14 +4,13 @@
 //! writing the picture of the passes done; not a region (its pixels take light from the
 //! paths of every other pixel).
 
-use super::{Outcome, Run, STOP};
+use super::{Outcome, PeriodicSaves, Run, STOP};
 use crate::args::RenderArgs;
 use crate::usage_error;
 use snell::checkpoint::Splatted;
 use snell::render::RenderOptions;
 use snell::scene::IntegratorKind;
 use std::process::ExitCode;
-use std::time::Instant;
 
 /// The flags light tracing and bdpt do not take yet, refused with exit 2.
 pub(super) fn check(
@@ -65,18 +64,9 @@ pub(super) fn render_splatted(
         region: None,
     };
     let first = earlier.as_ref().map_or(0, |e| e.spp);
-    // A checkpoint after a pass, when `--checkpoint-every` has passed since the last.
-    let (mut last_save, mut save_error) = (Instant::now(), None);
-    let mut on_pass = |state: &dyn Fn() -> Splatted| {
-        if let Some(path) = run.checkpoint
-            && last_save.elapsed() >= run.every
-        {
-            if let Err(e) = run.saver.splatted(state()).save(path) {
-                save_error.get_or_insert(e.to_string());
-            }
-            last_save = Instant::now();
-        }
-    };
+    let mut saves = PeriodicSaves::new();
+    let mut on_pass =
+        |state: &dyn Fn() -> Splatted| saves.pass_done(run, || run.saver.splatted(state()));
     let (spp, r, layers, state) = if kind == IntegratorKind::Bdpt {
         let r = snell::render::bdpt::render_bdpt_from(
             run.scene,
@@ -99,12 +89,7 @@ pub(super) fn render_splatted(
         .map_err(|e| e.to_string())?;
         (r.spp, r.rendered, vec![], r.state)
     };
-    if let (Some(e), Some(path)) = (save_error, run.checkpoint) {
-        eprintln!(
-            "warning: cannot save the checkpoint {}: {e}",
-            path.display()
-        );
-    }
+    saves.warn(run);
     let unit = if kind == IntegratorKind::Bdpt {
         "samples"
     } else {

@@ -530,6 +530,45 @@ impl Saver<'_> {
     }
 }
 
+/// Checkpoints between passes: one saved when `--checkpoint-every` has passed since the
+/// last, and the first error in saving one kept to be told once the render ends.
+pub(crate) struct PeriodicSaves {
+    last: Instant,
+    error: Option<String>,
+}
+
+impl PeriodicSaves {
+    /// None saved yet; the first after `run.every` from now.
+    pub(crate) fn new() -> Self {
+        PeriodicSaves {
+            last: Instant::now(),
+            error: None,
+        }
+    }
+
+    /// At a pass's end: saves `make()`'s checkpoint where `run` saves them and it is time.
+    pub(crate) fn pass_done(&mut self, run: &Run, make: impl FnOnce() -> Checkpoint) {
+        if let Some(path) = run.checkpoint
+            && self.last.elapsed() >= run.every
+        {
+            if let Err(e) = make().save(path) {
+                self.error.get_or_insert(e.to_string());
+            }
+            self.last = Instant::now();
+        }
+    }
+
+    /// After the render: a warning if a checkpoint could not be saved.
+    pub(crate) fn warn(self, run: &Run) {
+        if let (Some(e), Some(path)) = (self.error, run.checkpoint) {
+            eprintln!(
+                "warning: cannot save the checkpoint {}: {e}",
+                path.display()
+            );
+        }
+    }
+}
+
 /// A render's parts, as both ways of rendering take them.
 pub(crate) struct Run<'a> {
     pub(crate) scene: &'a snell::Scene,

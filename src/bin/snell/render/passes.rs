@@ -3,13 +3,13 @@
 //! an adaptive render, `--noise`, a bar of the pixels converged), checkpoints between
 //! passes, and Ctrl-C writing the picture of the samples taken so far.
 
-use super::{Adaptive, Outcome, Run, STOP};
+use super::{Adaptive, Outcome, PeriodicSaves, Run, STOP};
 use snell::film::Film;
 use snell::render::RenderOptions;
 use snell::render::progressive::{
     Ended, PassEvent, SampleCount, Until, film_samples_in, render_progressive,
 };
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 /// Renders `run`'s scene in passes, from `earlier` (a resumed film) if given, until its
 /// samples or `time` are spent or Ctrl-C stops it.
@@ -55,8 +55,7 @@ pub(crate) fn render_passes(
     // The picture's estimated error after the last pass, shown on the bar (worked out only
     // where the bar is seen: it reads the whole film, or the region).
     let mut error: Option<f32> = None;
-    let mut last_save = Instant::now();
-    let mut save_error = None;
+    let mut saves = PeriodicSaves::new();
     let until = Until {
         spp: s.spp,
         time,
@@ -110,30 +109,14 @@ pub(crate) fn render_passes(
                         eta = format!("ETA {}", snell::render::estimate::in_words(left));
                     }
                 }
-                if let Some(path) = run.checkpoint
-                    && last_save.elapsed() >= run.every
-                {
-                    if let Err(e) = run
-                        .saver
-                        .checkpoint(Default::default(), Some(film.clone()))
-                        .save(path)
-                    {
-                        save_error.get_or_insert(e.to_string());
-                    }
-                    last_save = Instant::now();
-                }
+                saves.pass_done(run, || {
+                    run.saver.checkpoint(Default::default(), Some(film.clone()))
+                });
             }
         },
     )
     .map_err(|e| e.to_string())?;
-    if let Some(e) = save_error
-        && let Some(path) = run.checkpoint
-    {
-        eprintln!(
-            "warning: cannot save the checkpoint {}: {e}",
-            path.display()
-        );
-    }
+    saves.warn(run);
     let spp = film_samples_in(&film, run.region);
     let most = film
         .pixels_in(run.region)
